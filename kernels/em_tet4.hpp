@@ -1,0 +1,102 @@
+#pragma once
+// Energy-momentum internal force of a P1 SVK tetrahedron and its exact (non-symmetric)
+// tangent (ALGORITHM.md §1, eq. 18-20, Simo-Tarnow); the plain mid-point variant.
+//   f_A  = V_e F_{n+1/2} S_alg G_A
+//   S_alg = S((E_n + E_{n+1})/2)  (energy-momentum)  or  S(E(F_{n+1/2}))  (mid-point)
+//   K_AB = V_e [ 1/2 (G_A . S_alg G_B) I + 1/2 B_A(F_{n+1/2})^T C B_B(F_x) ],
+//   F_x = F_{n+1} (energy-momentum) or F_{n+1/2} (mid-point).
+#include "kernels/svk.hpp"
+#include "kernels/tet4.hpp"
+
+namespace emc::kernels {
+
+enum class Integrator : int { energy_momentum = 0, midpoint = 1 };
+
+/// Internal force f[12] (node-major: 3A+i) and, if K != nullptr, the tangent d f / d u_{n+1}
+/// K[12][12], given u0 = u_n and u1 = u_{n+1} at the 4 nodes.
+KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame& m,
+                                    Integrator integ, const double u0[4][3],
+                                    const double u1[4][3], double f[12], double (*K)[12]) {
+  double F0[3][3], F1[3][3], Fm[3][3], Ea[3][3], S[3][3];
+  deformation_gradient(G, u0, F0);
+  deformation_gradient(G, u1, F1);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Fm[i][j] = 0.5 * (F0[i][j] + F1[i][j]);
+  if (integ == Integrator::energy_momentum) {
+    double E0[3][3], E1[3][3];
+    green_strain(F0, E0);
+    green_strain(F1, E1);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Ea[i][j] = 0.5 * (E0[i][j] + E1[i][j]);
+  } else {
+    green_strain(Fm, Ea);
+  }
+  svk_stress(m, Ea, S);
+  // P = F_{n+1/2} S_alg;  f_A = V_e P G_A
+  double P[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0;
+      for (int k = 0; k < 3; ++k) s += Fm[i][k] * S[k][j];
+      P[i][j] = s;
+    }
+  for (int A = 0; A < 4; ++A)
+    for (int i = 0; i < 3; ++i) {
+      double s = 0;
+      for (int j = 0; j < 3; ++j) s += P[i][j] * G[A][j];
+      f[3 * A + i] = Ve * s;
+    }
+  if (K == nullptr) return;
+  const double(*Fx)[3] = (integ == Integrator::energy_momentum) ? F1 : Fm;
+  double a[4][3], b[4][3], SG[4][3], FF[3][3];
+  for (int A = 0; A < 4; ++A)
+    for (int i = 0; i < 3; ++i) {
+      double sa = 0, sb = 0, ss = 0;
+      for (int k = 0; k < 3; ++k) {
+        sa += Fm[i][k] * G[A][k];
+        sb += Fx[i][k] * G[A][k];
+        ss += S[i][k] * G[A][k];
+      }
+      a[A][i] = sa;
+      b[A][i] = sb;
+      SG[A][i] = ss;
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0;
+      for (int k = 0; k < 3; ++k) s += Fm[i][k] * Fx[j][k];
+      FF[i][j] = s;
+    }
+  const double h = 0.5 * Ve;
+  for (int A = 0; A < 4; ++A)
+    for (int B = 0; B < 4; ++B) {
+      double GSG = 0, GG = 0;
+      for (int k = 0; k < 3; ++k) {
+        GSG += G[A][k] * SG[B][k];
+        GG += G[A][k] * G[B][k];
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          K[3 * A + i][3 * B + j] =
+              h * ((i == j ? GSG : 0.0) + m.lambda * a[A][i] * b[B][j] + m.mu * GG * FF[i][j] +
+                   m.mu * a[B][i] * b[A][j]);
+    }
+}
+
+/// Strain energy V_e W(E(u)) of the element.
+KOKKOS_INLINE_FUNCTION double tet4_energy(const double G[4][3], double Ve, const Lame& m,
+                                          const double u[4][3]) {
+  double F[3][3], E[3][3];
+  deformation_gradient(G, u, F);
+  green_strain(F, E);
+  return Ve * svk_energy(m, E);
+}
+
+/// det F of the element at u (> 0 unless the element is inverted).
+KOKKOS_INLINE_FUNCTION double tet4_detF(const double G[4][3], const double u[4][3]) {
+  double F[3][3];
+  deformation_gradient(G, u, F);
+  return det3(F);
+}
+
+}  // namespace emc::kernels

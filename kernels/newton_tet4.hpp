@@ -1,0 +1,46 @@
+#pragma once
+// One element's contribution to the residual of eq. 20 and to the Newton matrix
+// (2/dt^2) M + K (ALGORITHM.md §1):
+//   g_A = (2/dt^2) M_AB (u_{B,n+1} - u_{B,n}) - (2/dt) M_AB V_{B,n} + f_int_A - f_ext_A.
+#include "kernels/em_tet4.hpp"
+#include "kernels/mass_tet4.hpp"
+
+namespace emc::kernels {
+
+struct ElementState {
+  double u0[4][3];  ///< u_n
+  double V0[4][3];  ///< V_n
+  double u1[4][3];  ///< u_{n+1} (current Newton iterate)
+};
+
+/// r[12]: element residual; A (optional): element Newton matrix; scale[12] (optional): sum of
+/// the absolute values of the four terms of g, a bound for its round-off (§1 Newton tolerance).
+KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m,
+                                        double rho, const double grav[3], Integrator integ,
+                                        double dt, const ElementState& s, double r[12],
+                                        double (*A)[12], double* scale) {
+  em_tet4(G, Ve, m, integ, s.u0, s.u1, r, A);  // r = f_int for now
+  double du[4][3], Mdu[4][3], MV[4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) du[a][i] = s.u1[a][i] - s.u0[a][i];
+  mass_times(rho, Ve, du, Mdu);
+  mass_times(rho, Ve, s.V0, MV);
+  const double c2 = 2.0 / (dt * dt), c1 = 2.0 / dt;
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) {
+      const double fext = rho * Ve * grav[i] / 4.0;
+      const double fint = r[3 * a + i];
+      r[3 * a + i] = c2 * Mdu[a][i] - c1 * MV[a][i] + fint - fext;
+      if (scale)
+        scale[3 * a + i] = Kokkos::Experimental::fabs(c2 * Mdu[a][i]) + Kokkos::Experimental::fabs(c1 * MV[a][i]) +
+                           Kokkos::Experimental::fabs(fint) + Kokkos::Experimental::fabs(fext);
+    }
+  if (A == nullptr) return;
+  for (int a = 0; a < 4; ++a)
+    for (int b = 0; b < 4; ++b) {
+      const double mab = c2 * mass_ab(rho, Ve, a, b);
+      for (int i = 0; i < 3; ++i) A[3 * a + i][3 * b + i] += mab;
+    }
+}
+
+}  // namespace emc::kernels

@@ -1,0 +1,60 @@
+#pragma once
+// Saint-Venant-Kirchhoff material (ALGORITHM.md §1): E = (F^T F - I)/2,
+// S(E) = lambda tr(E) I + 2 mu E, W = lambda/2 tr(E)^2 + mu E:E (per unit reference volume).
+#include <Kokkos_Core.hpp>
+
+namespace emc::kernels {
+
+struct Lame {
+  double lambda, mu;
+};
+
+/// Lame parameters from Young's modulus and Poisson's ratio.
+KOKKOS_INLINE_FUNCTION Lame lame(double young, double poisson) {
+  return {young * poisson / ((1 + poisson) * (1 - 2 * poisson)), young / (2 * (1 + poisson))};
+}
+
+KOKKOS_INLINE_FUNCTION void green_strain(const double F[3][3], double E[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0;
+      for (int k = 0; k < 3; ++k) s += F[k][i] * F[k][j];
+      E[i][j] = 0.5 * (s - (i == j ? 1.0 : 0.0));
+    }
+}
+
+KOKKOS_INLINE_FUNCTION void svk_stress(const Lame& m, const double E[3][3], double S[3][3]) {
+  const double tr = E[0][0] + E[1][1] + E[2][2];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) S[i][j] = 2 * m.mu * E[i][j] + (i == j ? m.lambda * tr : 0.0);
+}
+
+/// Strain energy density W(E).
+KOKKOS_INLINE_FUNCTION double svk_energy(const Lame& m, const double E[3][3]) {
+  const double tr = E[0][0] + E[1][1] + E[2][2];
+  double ee = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) ee += E[i][j] * E[i][j];
+  return 0.5 * m.lambda * tr * tr + m.mu * ee;
+}
+
+/// Von Mises equivalent of the Cauchy stress sigma = F S F^T / det F.
+KOKKOS_INLINE_FUNCTION double von_mises(const double F[3][3], const double S[3][3], double detF) {
+  double FS[3][3], s[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      FS[i][j] = 0;
+      for (int k = 0; k < 3; ++k) FS[i][j] += F[i][k] * S[k][j];
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      s[i][j] = 0;
+      for (int k = 0; k < 3; ++k) s[i][j] += FS[i][k] * F[j][k];
+      s[i][j] /= detF;
+    }
+  const double a = s[0][0] - s[1][1], b = s[1][1] - s[2][2], c = s[2][2] - s[0][0];
+  const double sh = s[0][1] * s[0][1] + s[1][2] * s[1][2] + s[2][0] * s[2][0];
+  return Kokkos::Experimental::sqrt(0.5 * (a * a + b * b + c * c) + 3 * sh);
+}
+
+}  // namespace emc::kernels

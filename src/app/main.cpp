@@ -1,0 +1,2 @@
+// emcontact command line (being written).
+int main() { return 1; }
