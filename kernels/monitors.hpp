@@ -1,7 +1,8 @@
 #pragma once
 // Per-element contributions to the monitored quantities at t_n (ALGORITHM.md §1, eq. 23-24):
 //   kinetic 1/2 V_A . M_AB V_B, elastic W_e(E_n), potential -f_ext_A . u_A,
-//   L = sum_A M_AB V_B, J = sum_A x_A x (M_AB V_B) about the origin.
+//   L = sum_A M_AB V_B, J = sum_A x_A x (M_AB V_B) about the origin;
+//   also the mass and its first moment sum_AB M_AB x_B (centre of mass = moment / mass).
 #include "kernels/em_tet4.hpp"
 #include "kernels/mass_tet4.hpp"
 
@@ -10,15 +11,18 @@ namespace emc::kernels {
 struct Monitors {
   double kinetic = 0, elastic = 0, potential = 0;
   double L[3] = {0, 0, 0}, J[3] = {0, 0, 0};
+  double mass = 0, moment[3] = {0, 0, 0};
 
   KOKKOS_INLINE_FUNCTION Monitors() = default;
   KOKKOS_INLINE_FUNCTION Monitors& operator+=(const Monitors& o) {
     kinetic += o.kinetic;
     elastic += o.elastic;
     potential += o.potential;
+    mass += o.mass;
     for (int i = 0; i < 3; ++i) {
       L[i] += o.L[i];
       J[i] += o.J[i];
+      moment[i] += o.moment[i];
     }
     return *this;
   }
@@ -31,12 +35,14 @@ KOKKOS_INLINE_FUNCTION void monitors_tet4(const double X[4][3], const double G[4
                                           Monitors& out) {
   double p[4][3];
   mass_times(rho, Ve, V, p);
+  out.mass += rho * Ve;
   for (int a = 0; a < 4; ++a) {
     const double x[3] = {X[a][0] + u[a][0], X[a][1] + u[a][1], X[a][2] + u[a][2]};
     for (int i = 0; i < 3; ++i) {
       out.kinetic += 0.5 * V[a][i] * p[a][i];
       out.potential -= rho * Ve * grav[i] / 4.0 * u[a][i];
       out.L[i] += p[a][i];
+      out.moment[i] += 0.25 * rho * Ve * x[i];  // sum_B M_AB = rho V_e / 4
     }
     out.J[0] += x[1] * p[a][2] - x[2] * p[a][1];
     out.J[1] += x[2] * p[a][0] - x[0] * p[a][2];

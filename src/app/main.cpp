@@ -1,2 +1,38 @@
-// emcontact command line (being written).
-int main() { return 1; }
+// emcontact: conserving dynamic contact by direct elimination. See README.md.
+#include <Teuchos_TimeMonitor.hpp>
+#include <Tpetra_Core.hpp>
+
+#include <cstdio>
+#include <iostream>
+
+#include "emcontact/app/run.hpp"
+#include "emcontact/error.hpp"
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  auto comm = Tpetra::getDefaultComm();
+  const bool root = comm->getRank() == 0;
+  try {
+    const auto opt = emc::app::parse_args(argc, argv);
+    if (opt.help) {
+      if (root) std::cout << emc::app::usage() << std::endl;
+      return 0;
+    }
+    Teuchos::Time wall("wall", true);
+    const auto s = emc::app::run(opt, comm);
+    if (root) {
+      std::printf("emcontact: %ld steps to t = %.6g on %d rank(s) in %.3f s, %d Newton "
+                  "iterations, max |E-E0|/|E0| = %.3e; output in %s\n",
+                  s.steps, s.time, comm->getSize(), wall.totalElapsedTime(true),
+                  s.newton_iterations, s.max_energy_error, s.output_dir.c_str());
+    }
+    Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, false);
+    return 0;
+  } catch (const emc::Error& e) {
+    if (root) std::cerr << "error: " << e.what() << std::endl;
+    return 1;
+  } catch (const std::exception& e) {
+    if (root) std::cerr << "error: " << e.what() << std::endl;
+    return 2;
+  }
+}

@@ -2,6 +2,7 @@
 // The mesh of one body: P1 tetrahedra, node coordinates and named surfaces. Plain arrays, no
 // Trilinos: every rank holds the whole (replicated) mesh; the fem module partitions elements.
 #include <array>
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -26,6 +27,11 @@ double tet_volume(const BodyMesh& m, int e);
 /// the generator's numbering) whose volume is negative (inverted) or below 1e-12 of the mean
 /// element volume (degenerate).
 void check_tets(const BodyMesh& m, const std::string& where);
+
+/// As above, but naming tet e by element_ids[e] (e.g. its element tag in the .msh file) when
+/// `element_ids` is not empty.
+void check_tets(const BodyMesh& m, const std::string& where,
+                const std::vector<std::size_t>& element_ids);
 
 /// The boundary triangles of the tet mesh (faces that belong to exactly one tet), oriented
 /// with the normal pointing out of the body, sorted deterministically.

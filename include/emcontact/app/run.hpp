@@ -1,0 +1,33 @@
+#pragma once
+// The application: command line, setup (input -> mesh -> model -> discretization), the time
+// loop with its progress line, output and the timer summary.
+#include <string>
+#include <vector>
+
+#include "emcontact/types.hpp"
+
+namespace emc::app {
+
+struct Options {
+  std::string input;                   ///< the XML file
+  std::vector<std::string> overrides;  ///< --set Section/Sub/name=value
+  std::string output_dir;              ///< --output DIR (overrides Output/directory)
+  bool help = false;
+};
+
+/// Parses argv; throws InputError with the usage on a bad command line.
+Options parse_args(int argc, char** argv);
+std::string usage();
+
+struct Summary {
+  long steps = 0;
+  double time = 0;
+  int newton_iterations = 0;
+  double max_energy_error = 0;  ///< max_n |E_n - E_0| / |E_0|
+  std::string output_dir;
+};
+
+/// Runs the whole simulation on `comm`. Throws emc::Error (after writing what it had).
+Summary run(const Options& opt, Teuchos::RCP<const Comm> comm);
+
+}  // namespace emc::app

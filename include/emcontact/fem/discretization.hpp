@@ -1,0 +1,69 @@
+#pragma once
+// The distributed discretization: element partition, Tpetra maps of owned and owned+shared
+// dofs, the FE graph (built once), per-element geometry in Kokkos views, and the assembly
+// driver that launches the element kernels and scatters into a Tpetra::FECrsMatrix.
+#include <Teuchos_RCP.hpp>
+
+#include "emcontact/fem/model.hpp"
+#include "emcontact/fem/partition.hpp"
+#include "emcontact/types.hpp"
+#include "kernels/monitors.hpp"
+
+namespace emc::fem {
+
+/// Dof numbering: global dof 3 n + c of node n, component c.
+inline GO dof_gid(long long node, int c) { return 3 * node + c; }
+
+struct AssemblyInfo {
+  double min_detF = 1;      ///< smallest det F_{n+1} over all elements (global)
+  long long worst_tet = -1; ///< global id (0-based) of the element with that det F
+};
+
+class Discretization {
+ public:
+  Discretization(const Model& model, Teuchos::RCP<const Comm> comm);
+
+  const Model& model() const { return model_; }
+  const Partition& part() const { return part_; }
+  Teuchos::RCP<const Comm> comm() const { return comm_; }
+  Teuchos::RCP<const Map> owned_map() const { return owned_; }      ///< owned dofs
+  Teuchos::RCP<const Map> overlap_map() const { return overlap_; }  ///< owned + shared dofs
+  Teuchos::RCP<const Map> element_map() const { return elements_; } ///< my tets
+  Teuchos::RCP<FEGraph> graph() const { return graph_; }
+
+  /// Copies owned values to an owned+shared vector.
+  void to_overlap(const Vector& owned, Vector& overlap) const;
+  Teuchos::RCP<Vector> new_overlap_vector() const;
+
+  /// Residual of eq. 20 into r, the Newton matrix (2/dt^2) M + K into A (if not null), and
+  /// the round-off scale of r (ALGORITHM.md §1 Newton tolerance) into scale (if not null).
+  /// u0, V0 = state at t_n, u1 = current iterate; all owned vectors.
+  AssemblyInfo assemble(const Vector& u0, const Vector& V0, const Vector& u1, double dt,
+                        FEMatrix* A, Vector& r, Vector* scale) const;
+
+  /// Monitored quantities of (u, V) summed over all ranks (ALGORITHM.md §1 eq. 23-24).
+  kernels::Monitors monitors(const Vector& u, const Vector& V) const;
+
+  /// Von Mises stress per owned element (on element_map()).
+  Teuchos::RCP<Vector> von_mises(const Vector& u) const;
+
+ private:
+  const Model& model_;
+  Teuchos::RCP<const Comm> comm_;
+  Partition part_;
+  Teuchos::RCP<const Map> owned_, overlap_, elements_;
+  Teuchos::RCP<const Import> importer_;
+  Teuchos::RCP<const Export> exporter_;
+  Teuchos::RCP<FEGraph> graph_;
+  // per local element
+  Kokkos::View<double* [4][3], ExecSpace> X_, G_;
+  Kokkos::View<double*, ExecSpace> Ve_, lambda_, mu_, rho_;
+  Kokkos::View<int* [4], ExecSpace> node_lid_;  ///< node index in the overlap map (dof = 3k+c)
+  Kokkos::View<int* [12], ExecSpace> col_lid_;  ///< dof columns in the graph's column map
+
+  void build_maps();
+  void build_element_data();
+  void build_graph();
+};
+
+}  // namespace emc::fem

@@ -1,0 +1,49 @@
+#pragma once
+// The global (replicated) description of the problem: all bodies' meshes concatenated,
+// materials, initial velocities, loads and fixed nodes. Built identically on every rank.
+#include <Teuchos_ParameterList.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "emcontact/mesh/body_mesh.hpp"
+#include "kernels/em_tet4.hpp"
+
+namespace emc::fem {
+
+struct Body {
+  std::string name;
+  int node_begin = 0, node_end = 0;  ///< global node range [begin, end)
+  int tet_begin = 0, tet_end = 0;    ///< global tet range
+  double young = 0, poisson = 0, density = 0;
+  std::array<double, 3> velocity{}, angular_velocity{};
+  mesh::BodyMesh mesh;  ///< the body's own mesh (local node numbers), for its named surfaces
+};
+
+struct Model {
+  std::vector<double> X;          ///< reference coordinates, 3 per global node
+  std::vector<int> tets;          ///< 4 global node ids per tet
+  std::vector<int> body_of_tet;   ///< body index per tet
+  std::vector<Body> bodies;
+  std::vector<char> fixed;        ///< per global node: displacement prescribed to zero
+  std::array<double, 3> gravity{};
+  kernels::Integrator integrator = kernels::Integrator::energy_momentum;
+
+  int num_nodes() const { return static_cast<int>(X.size() / 3); }
+  int num_tets() const { return static_cast<int>(tets.size() / 4); }
+};
+
+/// Assembles the model from the validated parameters and the bodies' meshes (in the order of
+/// the `Bodies` sublists). `file` names the input in error messages.
+Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMesh> meshes,
+                  const std::string& file);
+
+/// Initial velocity per global node (3 each): v + omega x (X - X_c), X_c the body's centre of
+/// mass (ALGORITHM.md §1 consistent mass: the volume-weighted centroid of its tets).
+std::vector<double> initial_velocity(const Model& m);
+
+/// Centre of mass of body b in the reference configuration.
+std::array<double, 3> centre_of_mass(const Model& m, int b);
+
+}  // namespace emc::fem

@@ -1,0 +1,86 @@
+#pragma once
+// Internals of the input module, declared for its sources, the docs generator and unit tests.
+#include <Teuchos_ParameterList.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace emc::input::detail {
+
+/// A top-level section of the input. A fixed section (`Time`) is validated against `schema`;
+/// a named section (`Bodies`, `Dirichlet`) holds user-named sublists, each validated against
+/// the template `schema` and documented as `<name>/<placeholder>`.
+struct Section {
+  std::string name;
+  std::string doc;
+  Teuchos::RCP<const Teuchos::ParameterList> schema;
+  std::string placeholder;  ///< "" for a fixed section, else e.g. "<body>"
+  bool named() const { return !placeholder.empty(); }
+};
+
+/// The sections, in documentation order (a new module adds its section here).
+std::vector<Section> sections();
+
+/// What is wrong with one value, and what is allowed instead.
+struct Problem {
+  std::string what;
+  std::string allowed;
+};
+
+// --- describing schema entries (describe.cpp) ---
+
+/// The Teuchos/XML type name of a value: "double", "int", "string", "bool", "Array(double)".
+std::string type_name(const Teuchos::any& value);
+/// A value as the user writes it: shortest round-trip doubles, {x, y, z} arrays, quoted strings
+/// if `quote_strings`.
+std::string format_value(const Teuchos::any& value, bool quote_strings = true);
+/// The shortest decimal that reads back as exactly `x`.
+std::string format_double(double x);
+/// What a schema entry accepts, as a phrase ("a double > 0", "one of \"gmres\", \"cg\"").
+std::string allowed_text(const Teuchos::ParameterEntry& valid);
+/// The same for the documentation table (no article, Markdown code spans).
+std::string allowed_markdown(const Teuchos::ParameterEntry& valid);
+/// The names of a schema list's entries, comma separated.
+std::string entry_names(const Teuchos::ParameterList& valid);
+/// ` (did you mean "x"?)` if a name of `valid` is close to `name`, else "".
+std::string suggestion(const std::string& name, const Teuchos::ParameterList& valid);
+/// True if `valid` is a pass-through sublist (disableRecursiveValidation(): any content).
+bool is_pass_through(const Teuchos::ParameterList& valid);
+/// The number of components every value of an Array(double) entry must have (3 for vectors
+/// whose default has 3), or nullopt.
+std::optional<int> required_size(const Teuchos::ParameterEntry& valid);
+/// Teuchos' multi-line exception text condensed to one line (the throw locations dropped).
+std::string condense(const std::string& teuchos_message);
+
+// --- validation (validate.cpp) ---
+
+/// Checks one user value against its schema entry (type, validator, 3 components).
+std::optional<Problem> check_entry(const Teuchos::ParameterEntry& user,
+                                   const Teuchos::ParameterEntry& valid);
+/// Checks every entry of `user` (recursively, pass-through sublists excepted) against `valid`;
+/// throws InputError "<file>: parameter "<path>/<name>": ...; allowed: ...".
+void check_list(const Teuchos::ParameterList& user, const Teuchos::ParameterList& valid,
+                const std::string& path, const std::string& file);
+/// Throws InputError `<file>: parameter "<path>": <what>; allowed: <allowed>`.
+[[noreturn]] void fail(const std::string& file, const std::string& path, const Problem& p);
+
+// --- reading and overrides (xml.cpp, overrides.cpp) ---
+
+/// Reads the XML file (Teuchos), after a strict scan of its values (numbers, bools, duplicate
+/// names) that Teuchos would silently accept. Throws InputError "<file>: ...".
+Teuchos::RCP<Teuchos::ParameterList> read_xml(const std::string& file);
+/// Parses `text` as a value of the type of `like`; throws std::invalid_argument.
+Teuchos::any parse_value(const std::string& text, const Teuchos::any& like);
+/// Parses a pass-through value whose type is unknown: int, double, bool, else string.
+Teuchos::any guess_value(const std::string& text);
+/// Applies one "Section/Sub/name=value" override to the raw input `params`.
+void apply_override(Teuchos::ParameterList& params, const std::string& override_text,
+                    const std::string& file);
+
+// --- documentation (docs.cpp) ---
+
+/// A short valid input (one generated box, a Dirichlet condition), shown in the docs.
+std::string example_xml();
+
+}  // namespace emc::input::detail

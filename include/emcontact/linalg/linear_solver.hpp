@@ -1,0 +1,61 @@
+#pragma once
+// The linear solver behind one interface: Belos (GMRES, or CG for symmetric matrices) with an
+// Ifpack2 (ILU, additive Schwarz) or MueLu preconditioner on any number of ranks, or Amesos2
+// KLU2 on one rank. The preconditioner is reused across Newton iterations and steps while the
+// iteration count stays near the count of a fresh one. After every solve the true residual
+// is checked; a failure throws LinearSolveError with the solver's own message.
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+
+#include "emcontact/error.hpp"
+#include "emcontact/types.hpp"
+
+namespace emc::linalg {
+
+class LinearSolveError : public RunError {
+ public:
+  explicit LinearSolveError(const std::string& what) : RunError(what) {}
+};
+
+struct SolveStats {
+  int iterations = 0;
+  double true_residual = 0;  ///< ||b - A x|| / ||b|| after the solve
+  bool fresh_preconditioner = false;
+};
+
+/// A preconditioner factory result (Ifpack2 or MueLu), as a Tpetra operator.
+Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<const Matrix>& A,
+                                    const Teuchos::ParameterList& user);
+Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A,
+                                  const Teuchos::ParameterList& user);
+/// x = A^-1 b with Amesos2 KLU2 (one rank only).
+void solve_klu2(const Teuchos::RCP<const Matrix>& A, const Vector& b, Vector& x);
+
+class LinearSolver {
+ public:
+  /// `linear` is the validated `Solver/Linear` sublist.
+  LinearSolver(const Teuchos::ParameterList& linear, Teuchos::RCP<const Comm> comm);
+
+  /// Solves A x = b from x = 0. Throws LinearSolveError if the true residual is too large.
+  SolveStats solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x);
+
+  /// Forces a fresh preconditioner at the next solve (e.g. after a change of the active set).
+  void invalidate() { prec_ = Teuchos::null; }
+  std::string description() const;
+
+ private:
+  std::string type_, prec_type_;
+  double tol_, check_factor_;
+  int max_iters_;
+  bool reuse_;
+  Teuchos::ParameterList belos_, ifpack2_, muelu_;
+  Teuchos::RCP<Operator> prec_;
+  int fresh_iters_ = 0;
+
+  int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, bool& converged,
+                  std::string& message);
+  void build_preconditioner(const Teuchos::RCP<Matrix>& A);
+};
+
+}  // namespace emc::linalg

@@ -1,0 +1,33 @@
+#pragma once
+// Field output: HDF5 files with an XDMF index that ParaView opens as a time series. Rank 0
+// writes arrays already gathered in global node / element order.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace emc::output {
+
+struct FieldFrame {
+  long step = 0;
+  double time = 0;
+  std::vector<double> displacement;  ///< 3 per node
+  std::vector<double> velocity;      ///< 3 per node
+  std::vector<double> von_mises;     ///< 1 per tet (Cauchy stress at t_n)
+};
+
+class FieldWriter {
+ public:
+  /// DIR/mesh.h5 (geometry X, topology tets, body id per tet) is written once here.
+  FieldWriter(std::string dir, const std::vector<double>& X, const std::vector<long long>& tets,
+              const std::vector<int>& body_of_tet);
+  /// Writes DIR/fields_<step>.h5 atomically, then rewrites DIR/fields.xdmf atomically.
+  void write(const FieldFrame& f);
+
+ private:
+  std::string dir_;
+  long long num_nodes_ = 0, num_tets_ = 0;
+  std::vector<std::pair<long, double>> frames_;  // (step, time)
+  void write_xdmf() const;
+};
+
+}  // namespace emc::output

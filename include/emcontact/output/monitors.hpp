@@ -1,0 +1,48 @@
+#pragma once
+// DIR/monitors.csv: one row per accepted step (ALGORITHM.md §1 quantities). Rank 0 only.
+#include <array>
+#include <string>
+#include <vector>
+
+namespace emc::output {
+
+struct MonitorRow {
+  long step = 0;
+  double time = 0;
+  double kinetic = 0, elastic = 0, potential = 0, total = 0;
+  std::array<double, 3> L{}, J{};
+  int active_contacts = 0;
+  int newton_iterations = 0;
+  // extra columns, after the fixed ones
+  double dt = 0;
+  int linear_iterations = 0;
+  std::array<double, 3> com{};  ///< centre of mass (sum M x / sum M)
+};
+
+/// The fixed header: step,time,kinetic,elastic,potential,total,Lx,Ly,Lz,Jx,Jy,Jz,
+/// active_contacts,newton_iterations, then dt,linear_iterations,com_x,com_y,com_z.
+std::string monitor_header();
+std::string format_row(const MonitorRow& r);  ///< %.17g for doubles: round-trips exactly
+
+class MonitorWriter {
+ public:
+  /// `path` is DIR/monitors.csv; the file is (re)written atomically on flush().
+  explicit MonitorWriter(std::string path);
+  void append(const MonitorRow& r);
+  /// Rewrites the whole file atomically if `force` or if at least `min_seconds` passed since
+  /// the last write.
+  void flush(bool force = true, double min_seconds = 1.0);
+  const std::vector<MonitorRow>& rows() const { return rows_; }
+
+ private:
+  std::string path_;
+  std::vector<MonitorRow> rows_;
+  double last_write_ = -1e300;  // steady-clock seconds of the last write
+  std::size_t written_ = 0;     // rows_.size() at the last write
+  std::string text_;            // header + every formatted row: one write per flush
+};
+
+/// Reads a monitors.csv written by MonitorWriter (for tests and tools); throws on bad format.
+std::vector<MonitorRow> read_monitors(const std::string& path);
+
+}  // namespace emc::output

@@ -1,0 +1,47 @@
+#pragma once
+// Newton on the full residual of eq. 20, reduced by the elimination (ALGORITHM.md §1, §3):
+//   (P^T A P + D) dq = -P^T g,  u_{n+1} += P dq,
+// converged when ||P^T g|| <= max(rtol ||P^T g_0||, atol, 100 eps ||scale||), where scale
+// bounds the round-off of g's four terms. No step is ever accepted unconverged.
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+#include <vector>
+
+#include "emcontact/fem/discretization.hpp"
+#include "emcontact/linalg/elimination.hpp"
+#include "emcontact/linalg/linear_solver.hpp"
+
+namespace emc::time {
+
+struct NewtonOptions {
+  double rtol = 1e-10, atol = 0;
+  int max_iterations = 25;
+};
+NewtonOptions newton_options(const Teuchos::ParameterList& newton);
+
+struct NewtonResult {
+  bool converged = false;
+  int iterations = 0;         ///< linear solves done
+  int linear_iterations = 0;  ///< Krylov iterations summed
+  std::vector<double> residuals;  ///< ||P^T g|| per iterate
+  std::string failure;        ///< why it did not converge
+};
+
+class Newton {
+ public:
+  Newton(const fem::Discretization& disc, linalg::Elimination& elim,
+         linalg::LinearSolver& solver, NewtonOptions opt);
+
+  /// Solves eq. 20 for u1 given (u0, V0) at t_n; u1 holds the start guess on entry.
+  NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1);
+
+ private:
+  const fem::Discretization& disc_;
+  linalg::Elimination& elim_;
+  linalg::LinearSolver& solver_;
+  NewtonOptions opt_;
+  Teuchos::RCP<FEMatrix> A_;  ///< built once on the FE graph, refilled every iteration
+};
+
+}  // namespace emc::time

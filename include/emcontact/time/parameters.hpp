@@ -1,0 +1,11 @@
+#pragma once
+// The `Time` section of the input: declared here, validated by the input module.
+#include <Teuchos_ParameterList.hpp>
+
+namespace emc::time {
+
+/// Valid parameters of `Time` (defaults, validators, doc strings): `dt`, `end`, `integrator`
+/// ("energy-momentum" or "midpoint"), `max step cuts`, `grow after`.
+Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+
+}  // namespace emc::time

@@ -1,0 +1,48 @@
+#pragma once
+// Time stepping with the energy-momentum (or mid-point) scheme (ALGORITHM.md §1, eq. 19):
+// V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n. A step whose Newton fails is retried with dt/2 (up to
+// `max step cuts` times); dt doubles back toward the nominal dt after `grow after` good steps.
+#include <Teuchos_ParameterList.hpp>
+
+#include <string>
+
+#include "emcontact/time/newton.hpp"
+
+namespace emc::time {
+
+/// Everything that defines the solution at t_n.
+struct State {
+  Teuchos::RCP<Vector> u, V;  ///< owned displacement and velocity
+  double t = 0;
+  long step = 0;
+  double dt = 0;       ///< current step size (may be below the nominal one after cuts)
+  int good_steps = 0;  ///< accepted steps since the last change of dt
+};
+
+struct StepReport {
+  double dt = 0;
+  int newton_iterations = 0;
+  int linear_iterations = 0;
+  int cuts = 0;
+  std::string last_failure;
+};
+
+class Stepper {
+ public:
+  /// `time` is the validated `Time` sublist.
+  Stepper(const Teuchos::ParameterList& time, Newton& newton, State& state);
+
+  bool finished() const;
+  /// Advances to the next accepted step. Throws RunError if dt cannot be cut any further.
+  StepReport advance();
+  double nominal_dt() const { return dt_; }
+  double end() const { return end_; }
+
+ private:
+  Newton& newton_;
+  State& s_;
+  double dt_, end_;
+  int max_cuts_, grow_after_;
+};
+
+}  // namespace emc::time

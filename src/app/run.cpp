@@ -1,0 +1,198 @@
+// The application's data flow, one way: input -> mesh -> model -> discretization -> per step
+// [assemble -> eliminate -> solve -> update] -> monitors and fields.
+#include <Teuchos_TimeMonitor.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "emcontact/app/meshes.hpp"
+#include "emcontact/app/progress.hpp"
+#include "emcontact/app/run.hpp"
+#include "emcontact/error.hpp"
+#include "emcontact/fem/discretization.hpp"
+#include "emcontact/input/input.hpp"
+#include "emcontact/linalg/elimination.hpp"
+#include "emcontact/linalg/linear_solver.hpp"
+#include "emcontact/output/atomic_file.hpp"
+#include "emcontact/output/fields.hpp"
+#include "emcontact/output/monitors.hpp"
+#include "emcontact/time/stepper.hpp"
+
+namespace emc::app {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+
+namespace {
+
+/// Gathers owned vectors (dofs or elements) to rank 0 in global order, for the output.
+class RootGather {
+ public:
+  RootGather(RCP<const Map> owned, GO n_global) {
+    const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+    std::vector<GO> ids;
+    if (owned->getComm()->getRank() == 0)
+      for (GO g = 0; g < n_global; ++g) ids.push_back(g);
+    root_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(ids), 0, owned->getComm()));
+    import_ = rcp(new Import(owned, root_));
+  }
+  std::vector<double> operator()(const Vector& v) const {
+    Vector r(root_);
+    r.doImport(v, *import_, Tpetra::INSERT);
+    auto h = r.getLocalViewHost(Tpetra::Access::ReadOnly);
+    return std::vector<double>(h.data(), h.data() + h.extent(0));
+  }
+
+ private:
+  RCP<const Map> root_;
+  RCP<const Import> import_;
+};
+
+/// Displacement fixed (Dirichlet) dofs that this rank owns (ALGORITHM.md §3: zero columns of P).
+std::vector<GO> owned_fixed_dofs(const fem::Discretization& disc) {
+  std::vector<GO> fixed;
+  for (int n : disc.part().owned_nodes)
+    if (disc.model().fixed[n])
+      for (int c = 0; c < 3; ++c) fixed.push_back(fem::dof_gid(n, c));
+  return fixed;
+}
+
+/// Initial velocity restricted to the owned dofs; zero on fixed nodes.
+RCP<Vector> initial_velocity(const fem::Discretization& disc) {
+  const auto V = fem::initial_velocity(disc.model());
+  auto out = rcp(new Vector(disc.owned_map()));
+  auto h = out->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  const auto& map = *disc.owned_map();
+  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) {
+    const GO g = map.getGlobalElement(static_cast<LO>(l));
+    h(l, 0) = disc.model().fixed[g / 3] ? 0.0 : V[g];
+  }
+  return out;
+}
+
+output::MonitorRow monitor_row(const fem::Discretization& disc, const time::State& s,
+                               const time::StepReport& rep) {
+  const auto m = disc.monitors(*s.u, *s.V);
+  output::MonitorRow r;
+  r.step = s.step;
+  r.time = s.t;
+  r.kinetic = m.kinetic;
+  r.elastic = m.elastic;
+  r.potential = m.potential;
+  r.total = m.kinetic + m.elastic + m.potential;
+  for (int i = 0; i < 3; ++i) {
+    r.L[i] = m.L[i];
+    r.J[i] = m.J[i];
+    r.com[i] = m.mass > 0 ? m.moment[i] / m.mass : 0.0;
+  }
+  r.active_contacts = 0;
+  r.newton_iterations = rep.newton_iterations;
+  r.dt = rep.dt;
+  r.linear_iterations = rep.linear_iterations;
+  return r;
+}
+
+/// Rank 0's writers; other ranks only take part in the gathers.
+struct Writers {
+  std::unique_ptr<output::MonitorWriter> monitors;
+  std::unique_ptr<output::FieldWriter> fields;
+  std::unique_ptr<RootGather> dofs, tets;
+  int every = 0;
+
+  void fields_frame(const fem::Discretization& disc, const time::State& s) {
+    if (every <= 0 || s.step % every != 0) return;
+    Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: output"));
+    output::FieldFrame f;
+    f.step = s.step;
+    f.time = s.t;
+    f.displacement = (*dofs)(*s.u);
+    f.velocity = (*dofs)(*s.V);
+    f.von_mises = (*tets)(*disc.von_mises(*s.u));
+    if (fields) fields->write(f);
+  }
+};
+
+Writers make_writers(const fem::Discretization& disc, const std::string& dir, int every) {
+  Writers w;
+  w.every = every;
+  const auto& model = disc.model();
+  const bool root = disc.comm()->getRank() == 0;
+  if (root) {
+    output::make_directory(dir);
+    w.monitors = std::make_unique<output::MonitorWriter>(dir + "/monitors.csv");
+  }
+  if (every > 0) {
+    w.dofs = std::make_unique<RootGather>(disc.owned_map(), 3LL * model.num_nodes());
+    w.tets = std::make_unique<RootGather>(disc.element_map(), model.num_tets());
+    if (root) {
+      std::vector<long long> tets(model.tets.begin(), model.tets.end());
+      w.fields = std::make_unique<output::FieldWriter>(dir, model.X, tets, model.body_of_tet);
+    }
+  }
+  return w;
+}
+
+double energy_scale(const output::MonitorRow& r0) {
+  const double s = std::fabs(r0.total);
+  return s > 0 ? s : std::max(r0.kinetic + r0.elastic + std::fabs(r0.potential), 1e-300);
+}
+
+}  // namespace
+
+Summary run(const Options& opt, RCP<const Comm> comm) {
+  const input::Input in = input::read_input(opt.input, opt.overrides);
+  const auto& P = *in.params;
+  auto meshes = build_meshes(P, in.dir, opt.input, *comm);
+  const fem::Model model = fem::build_model(P, std::move(meshes), opt.input);
+  const fem::Discretization disc(model, comm);
+
+  linalg::Elimination elim(disc.owned_map());
+  elim.set_constraints(owned_fixed_dofs(disc), {}, {});
+  linalg::LinearSolver solver(P.sublist("Solver").sublist("Linear"), comm);
+  time::Newton newton(disc, elim, solver,
+                      time::newton_options(P.sublist("Solver").sublist("Newton")));
+  time::State state;
+  state.u = rcp(new Vector(disc.owned_map()));
+  state.V = initial_velocity(disc);
+  time::Stepper stepper(P.sublist("Time"), newton, state);
+
+  const auto& out = P.sublist("Output");
+  Summary sum;
+  sum.output_dir = opt.output_dir.empty() ? out.get<std::string>("directory") : opt.output_dir;
+  Writers w = make_writers(disc, sum.output_dir, out.get<int>("every"));
+  const bool root = comm->getRank() == 0;
+  Progress progress(root && out.get<bool>("progress"), stepper.end());
+
+  const auto row0 = monitor_row(disc, state, time::StepReport{});
+  const double escale = energy_scale(row0);
+  if (root) w.monitors->append(row0);
+  w.fields_frame(disc, state);
+  try {
+    while (!stepper.finished()) {
+      const time::StepReport rep = stepper.advance();
+      const auto row = monitor_row(disc, state, rep);
+      const double err = std::fabs(row.total - row0.total) / escale;
+      sum.max_energy_error = std::max(sum.max_energy_error, err);
+      sum.newton_iterations += rep.newton_iterations;
+      if (root) {
+        Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: output"));
+        w.monitors->append(row);
+        w.monitors->flush(false, 1.0);
+      }
+      w.fields_frame(disc, state);
+      progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, 0);
+    }
+  } catch (const Error&) {
+    progress.finish();
+    if (root) w.monitors->flush(true);
+    throw;
+  }
+  progress.finish();
+  if (root) w.monitors->flush(true);
+  sum.steps = state.step;
+  sum.time = state.t;
+  return sum;
+}
+
+}  // namespace emc::app

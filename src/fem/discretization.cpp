@@ -1,0 +1,139 @@
+#include "emcontact/fem/discretization.hpp"
+
+#include <Kokkos_DualView.hpp>
+
+#include <algorithm>
+
+#include "emcontact/error.hpp"
+#include "kernels/svk.hpp"
+#include "kernels/tet4.hpp"
+
+namespace emc::fem {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+
+Discretization::Discretization(const Model& model, RCP<const Comm> comm)
+    : model_(model), comm_(comm) {
+  part_ = partition(model_, comm_->getRank(), comm_->getSize());
+  build_maps();
+  build_element_data();
+  build_graph();
+}
+
+void Discretization::build_maps() {
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  std::vector<GO> owned, overlap;
+  owned.reserve(3 * part_.owned_nodes.size());
+  for (int n : part_.owned_nodes)
+    for (int c = 0; c < 3; ++c) owned.push_back(dof_gid(n, c));
+  overlap = owned;  // owned dofs first, in the same order (FECrsGraph requires it)
+  for (int n : part_.shared_nodes)
+    for (int c = 0; c < 3; ++c) overlap.push_back(dof_gid(n, c));
+  owned_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(owned), 0, comm_));
+  overlap_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(overlap), 0, comm_));
+  std::vector<GO> tets(part_.my_tets.begin(), part_.my_tets.end());
+  elements_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(tets), 0, comm_));
+  importer_ = rcp(new Import(owned_, overlap_));
+  exporter_ = rcp(new Export(overlap_, owned_));
+}
+
+void Discretization::build_element_data() {
+  const int ne = static_cast<int>(part_.my_tets.size());
+  X_ = decltype(X_)("emc::X", ne);
+  G_ = decltype(G_)("emc::G", ne);
+  Ve_ = decltype(Ve_)("emc::Ve", ne);
+  lambda_ = decltype(lambda_)("emc::lambda", ne);
+  mu_ = decltype(mu_)("emc::mu", ne);
+  rho_ = decltype(rho_)("emc::rho", ne);
+  node_lid_ = decltype(node_lid_)("emc::node_lid", ne);
+  auto X = Kokkos::create_mirror_view(X_);
+  auto G = Kokkos::create_mirror_view(G_);
+  auto Ve = Kokkos::create_mirror_view(Ve_);
+  auto lam = Kokkos::create_mirror_view(lambda_);
+  auto mu = Kokkos::create_mirror_view(mu_);
+  auto rho = Kokkos::create_mirror_view(rho_);
+  auto lid = Kokkos::create_mirror_view(node_lid_);
+  for (int k = 0; k < ne; ++k) {
+    const int e = part_.my_tets[k];
+    double x[4][3], g[4][3];
+    for (int a = 0; a < 4; ++a) {
+      const int n = model_.tets[4 * e + a];
+      lid(k, a) = overlap_->getLocalElement(dof_gid(n, 0)) / 3;
+      for (int i = 0; i < 3; ++i) x[a][i] = X(k, a, i) = model_.X[3 * n + i];
+    }
+    Ve(k) = kernels::tet_gradients(x, g);
+    if (!(Ve(k) > 0))
+      throw InputError("mesh: element " + std::to_string(e + 1) + " has volume " +
+                       std::to_string(Ve(k)) + "; every tetrahedron must have positive volume");
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) G(k, a, i) = g[a][i];
+    const Body& b = model_.bodies[model_.body_of_tet[e]];
+    const auto l = kernels::lame(b.young, b.poisson);
+    lam(k) = l.lambda;
+    mu(k) = l.mu;
+    rho(k) = b.density;
+  }
+  Kokkos::deep_copy(X_, X);
+  Kokkos::deep_copy(G_, G);
+  Kokkos::deep_copy(Ve_, Ve);
+  Kokkos::deep_copy(lambda_, lam);
+  Kokkos::deep_copy(mu_, mu);
+  Kokkos::deep_copy(rho_, rho);
+  Kokkos::deep_copy(node_lid_, lid);
+}
+
+void Discretization::build_graph() {
+  const int ne = static_cast<int>(part_.my_tets.size());
+  const int nn = static_cast<int>(overlap_->getNodeNumElements() / 3);
+  auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), node_lid_);
+  // node adjacency from my elements: sorted unique (row, col) node pairs
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(16 * static_cast<std::size_t>(ne));
+  for (int k = 0; k < ne; ++k)
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) pairs.emplace_back(lid(k, a), lid(k, b));
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<std::size_t> start(nn + 1, 0);
+  for (const auto& p : pairs) ++start[p.first + 1];
+  for (int n = 0; n < nn; ++n) start[n + 1] += start[n];
+
+  Kokkos::DualView<std::size_t*, Node::device_type> count("emc::row_count", 3 * nn);
+  for (int n = 0; n < nn; ++n)
+    for (int c = 0; c < 3; ++c) count.h_view(3 * n + c) = 3 * (start[n + 1] - start[n]);
+  count.modify_host();
+  count.sync_device();
+  graph_ = rcp(new FEGraph(owned_, overlap_, count));
+  graph_->beginAssembly();
+  std::vector<GO> cols;
+  for (int n = 0; n < nn; ++n) {
+    cols.clear();
+    for (std::size_t k = start[n]; k < start[n + 1]; ++k) {
+      const GO node = overlap_->getGlobalElement(3 * pairs[k].second) / 3;
+      for (int c = 0; c < 3; ++c) cols.push_back(dof_gid(node, c));
+    }
+    const GO node = overlap_->getGlobalElement(3 * n) / 3;
+    for (int c = 0; c < 3; ++c)
+      graph_->insertGlobalIndices(dof_gid(node, c), Teuchos::ArrayView<const GO>(cols));
+  }
+  graph_->endAssembly();
+
+  col_lid_ = decltype(col_lid_)("emc::col_lid", ne);
+  auto col = Kokkos::create_mirror_view(col_lid_);
+  auto colmap = graph_->getColMap();
+  for (int k = 0; k < ne; ++k)
+    for (int a = 0; a < 4; ++a) {
+      const GO node = overlap_->getGlobalElement(3 * lid(k, a)) / 3;
+      for (int c = 0; c < 3; ++c) col(k, 3 * a + c) = colmap->getLocalElement(dof_gid(node, c));
+    }
+  Kokkos::deep_copy(col_lid_, col);
+}
+
+void Discretization::to_overlap(const Vector& owned, Vector& overlap) const {
+  overlap.doImport(owned, *importer_, Tpetra::INSERT);
+}
+
+RCP<Vector> Discretization::new_overlap_vector() const { return rcp(new Vector(overlap_)); }
+
+}  // namespace emc::fem

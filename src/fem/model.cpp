@@ -1,0 +1,121 @@
+#include "emcontact/fem/model.hpp"
+
+#include <Teuchos_Array.hpp>
+
+#include "emcontact/error.hpp"
+#include "kernels/tet4.hpp"
+
+namespace emc::fem {
+
+namespace {
+
+std::array<double, 3> vec3(const Teuchos::ParameterList& p, const std::string& name,
+                           const std::string& where) {
+  const auto& a = p.get<Teuchos::Array<double>>(name);
+  if (a.size() != 3)
+    throw InputError(where + "/" + name + ": expected 3 components, got " +
+                     std::to_string(a.size()));
+  return {a[0], a[1], a[2]};
+}
+
+Body make_body(const std::string& name, const Teuchos::ParameterList& bp, mesh::BodyMesh mesh,
+               const std::string& where) {
+  Body b;
+  b.name = name;
+  const auto& mat = bp.sublist("Material");
+  b.young = mat.get<double>("young");
+  b.poisson = mat.get<double>("poisson");
+  b.density = mat.get<double>("density");
+  const auto& init = bp.sublist("Initial");
+  b.velocity = vec3(init, "velocity", where + "/Initial");
+  b.angular_velocity = vec3(init, "angular velocity", where + "/Initial");
+  b.mesh = std::move(mesh);
+  return b;
+}
+
+/// Marks the nodes of every Dirichlet condition's surface as fixed.
+void apply_dirichlet(const Teuchos::ParameterList& params, Model& m, const std::string& file) {
+  if (!params.isSublist("Dirichlet")) return;
+  const auto& dl = params.sublist("Dirichlet");
+  for (auto it = dl.begin(); it != dl.end(); ++it) {
+    const std::string cname = dl.name(it);
+    if (!dl.isSublist(cname)) continue;
+    const auto& c = dl.sublist(cname);
+    const std::string where = file + ": Dirichlet/" + cname;
+    const std::string body = c.get<std::string>("body");
+    const std::string surface = c.get<std::string>("surface");
+    int bi = -1;
+    for (std::size_t k = 0; k < m.bodies.size(); ++k)
+      if (m.bodies[k].name == body) bi = static_cast<int>(k);
+    if (bi < 0) throw InputError(where + "/body: no body named \"" + body + "\"");
+    const Body& b = m.bodies[bi];
+    for (int n : mesh::surface_nodes(b.mesh, surface, where + "/surface"))
+      m.fixed[b.node_begin + n] = 1;
+  }
+}
+
+}  // namespace
+
+Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMesh> meshes,
+                  const std::string& file) {
+  Model m;
+  const auto& bl = params.sublist("Bodies");
+  std::size_t k = 0;
+  for (auto it = bl.begin(); it != bl.end(); ++it) {
+    const std::string name = bl.name(it);
+    if (!bl.isSublist(name)) continue;
+    if (k >= meshes.size()) throw Error("internal: fewer meshes than bodies");
+    Body b = make_body(name, bl.sublist(name), std::move(meshes[k++]),
+                       file + ": Bodies/" + name);
+    b.node_begin = m.num_nodes();
+    b.tet_begin = m.num_tets();
+    m.X.insert(m.X.end(), b.mesh.X.begin(), b.mesh.X.end());
+    for (int t : b.mesh.tets) m.tets.push_back(b.node_begin + t);
+    b.node_end = m.num_nodes();
+    b.tet_end = m.num_tets();
+    m.body_of_tet.resize(m.num_tets(), static_cast<int>(m.bodies.size()));
+    m.bodies.push_back(std::move(b));
+  }
+  m.fixed.assign(m.num_nodes(), 0);
+  apply_dirichlet(params, m, file);
+  if (params.isSublist("Loads"))
+    m.gravity = vec3(params.sublist("Loads"), "gravity", file + ": Loads");
+  const std::string integ = params.sublist("Time").get<std::string>("integrator");
+  m.integrator = integ == "midpoint" ? kernels::Integrator::midpoint
+                                    : kernels::Integrator::energy_momentum;
+  return m;
+}
+
+std::array<double, 3> centre_of_mass(const Model& m, int b) {
+  double vol = 0;
+  std::array<double, 3> c{};
+  for (int e = m.bodies[b].tet_begin; e < m.bodies[b].tet_end; ++e) {
+    double x[4][3];
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
+    const double v = kernels::tet_volume(x);
+    vol += v;
+    for (int i = 0; i < 3; ++i) c[i] += v * 0.25 * (x[0][i] + x[1][i] + x[2][i] + x[3][i]);
+  }
+  for (int i = 0; i < 3; ++i) c[i] /= vol;
+  return c;
+}
+
+std::vector<double> initial_velocity(const Model& m) {
+  std::vector<double> V(m.X.size(), 0.0);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const Body& body = m.bodies[b];
+    const auto c = centre_of_mass(m, static_cast<int>(b));
+    const auto& v = body.velocity;
+    const auto& w = body.angular_velocity;
+    for (int n = body.node_begin; n < body.node_end; ++n) {
+      const double r[3] = {m.X[3 * n] - c[0], m.X[3 * n + 1] - c[1], m.X[3 * n + 2] - c[2]};
+      V[3 * n + 0] = v[0] + w[1] * r[2] - w[2] * r[1];
+      V[3 * n + 1] = v[1] + w[2] * r[0] - w[0] * r[2];
+      V[3 * n + 2] = v[2] + w[0] * r[1] - w[1] * r[0];
+    }
+  }
+  return V;
+}
+
+}  // namespace emc::fem

@@ -1,0 +1,42 @@
+// Schema of the body, load and Dirichlet parts of the input.
+#include "emcontact/fem/parameters.hpp"
+
+#include "emcontact/input/validators.hpp"
+
+namespace emc::fem {
+
+using namespace emc::input;
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_body_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("<body>"));
+  auto& mat = pl->sublist("Material", false, "Saint-Venant-Kirchhoff material of the body.");
+  mat.set("young", 1e6, "Young's modulus [Pa].", positive_double());
+  mat.set("poisson", 0.3, "Poisson's ratio.", double_range(0.0, std::nextafter(0.5, 0.0)));
+  mat.set("density", 1000.0, "Mass density in the reference configuration [kg/m^3].",
+          positive_double());
+  auto& init = pl->sublist("Initial", false, "Initial rigid motion of the body.");
+  init.set("velocity", vec3(0, 0, 0), "Initial velocity of the centre of mass [m/s].",
+           vector3());
+  init.set("angular velocity", vec3(0, 0, 0),
+           "Initial angular velocity about the centre of mass [rad/s].", vector3());
+  return pl;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_load_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Loads"));
+  pl->set("gravity", vec3(0, 0, 0), "Gravitational acceleration [m/s^2].", vector3());
+  return pl;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_dirichlet_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("<condition>"));
+  pl->set("body", std::string(""), "Required: the name of the body (a sublist of Bodies).",
+          any_string());
+  pl->set("surface", std::string(""),
+          "Required: a named surface of the body's mesh (a Gmsh physical surface, a generator "
+          "face such as xmin or bottom, or boundary); its displacement is fixed to zero.",
+          any_string());
+  return pl;
+}
+
+}  // namespace emc::fem

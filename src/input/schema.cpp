@@ -1,0 +1,59 @@
+// The whole input schema, assembled from the modules' parameter declarations.
+#include "emcontact/fem/parameters.hpp"
+#include "emcontact/input/detail.hpp"
+#include "emcontact/input/input.hpp"
+#include "emcontact/linalg/parameters.hpp"
+#include "emcontact/mesh/generate.hpp"
+#include "emcontact/output/parameters.hpp"
+#include "emcontact/time/parameters.hpp"
+
+namespace emc::input {
+namespace detail {
+namespace {
+
+/// Template of one body: `Mesh` (mesh module), then `Material` and `Initial` (fem module).
+Teuchos::RCP<const Teuchos::ParameterList> body_template() {
+  auto body = Teuchos::rcp(new Teuchos::ParameterList("<body>"));
+  auto& mesh = body->sublist("Mesh", false, "The body's mesh: a Gmsh file or a generated shape.");
+  mesh = *emc::mesh::valid_mesh_parameters();
+  mesh.setName("Mesh");
+  const auto fem = emc::fem::valid_body_parameters();
+  for (auto it = fem->begin(); it != fem->end(); ++it) body->setEntry(fem->name(it), fem->entry(it));
+  return body;
+}
+
+}  // namespace
+
+std::vector<Section> sections() {
+  return {
+      {"Time", "Time stepping.", emc::time::valid_parameters(), ""},
+      {"Bodies",
+       "One sublist per body; its name (`<body>` below) is free. At least one body is required.",
+       body_template(), "<body>"},
+      {"Loads", "External loads.", emc::fem::valid_load_parameters(), ""},
+      {"Dirichlet",
+       "Optional: one sublist per fixed surface; its name (`<condition>` below) is free. The "
+       "displacement of the surface's nodes is fixed to zero.",
+       emc::fem::valid_dirichlet_parameters(), "<condition>"},
+      {"Solver", "Newton and linear solvers.", emc::linalg::valid_parameters(), ""},
+      {"Output", "What is written and where.", emc::output::valid_parameters(), ""},
+  };
+}
+
+}  // namespace detail
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
+  auto all = Teuchos::rcp(new Teuchos::ParameterList("emcontact"));
+  for (const auto& s : detail::sections()) {
+    auto& list = all->sublist(s.name, false, s.doc);
+    if (s.named()) {
+      list.sublist(s.placeholder) = *s.schema;
+    } else {
+      list = *s.schema;
+    }
+    list.setName(s.name);
+  }
+  return all;
+}
+
+}  // namespace emc::input

@@ -1,0 +1,114 @@
+// Reading the XML input: a strict scan of the values, then Teuchos' reader.
+#include <Teuchos_FileInputSource.hpp>
+#include <Teuchos_XMLObject.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "emcontact/error.hpp"
+#include "emcontact/input/detail.hpp"
+
+namespace emc::input::detail {
+namespace {
+
+[[noreturn]] void cannot_read(const std::string& file, const std::string& reason) {
+  throw InputError(file + ": cannot read the input: " + reason);
+}
+
+/// Refuses a missing, unreadable or non-regular file with a one-line reason.
+void check_readable(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto status = fs::status(file, ec);
+  if (!fs::exists(status)) cannot_read(file, "no such file");
+  if (fs::is_directory(status)) cannot_read(file, "it is a directory");
+  std::ifstream in(file);
+  if (!in) cannot_read(file, std::strerror(errno));
+}
+
+/// A type-appropriate example of what a value must look like.
+std::string value_hint(const std::string& type) {
+  if (type == "int") return "an integer, e.g. 10";
+  if (type == "double") return "a finite number, e.g. 0.01 or 1e-3";
+  if (type == "bool") return "true or false";
+  if (type == "Array(double)") return "{x, y, z} with finite numbers, e.g. {0, 0, -9.81}";
+  if (type == "Array(int)") return "{i, j, ...} with integers";
+  return type;
+}
+
+/// Checks that `value` reads as a `type` (only the types Teuchos reads laxly).
+bool value_is_valid(const std::string& type, const std::string& value) {
+  if (type != "int" && type != "double" && type != "bool" && type != "Array(double)" &&
+      type != "Array(int)")
+    return true;
+  Teuchos::any like;
+  if (type == "int") like = 0;
+  if (type == "double") like = 0.0;
+  if (type == "bool") like = false;
+  if (type == "Array(double)") like = Teuchos::Array<double>();
+  if (type == "Array(int)") like = Teuchos::Array<int>();
+  if (type.rfind("Array", 0) == 0 && value.find('{') == std::string::npos) return false;
+  try {
+    parse_value(value, like);
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
+/// The `name` attribute of a <Parameter> or <ParameterList>.
+std::string name_of(const Teuchos::XMLObject& x, const std::string& file, const std::string& path) {
+  if (!x.hasAttribute("name"))
+    throw InputError(file + ": a <" + x.getTag() + "> " +
+                     (path.empty() ? "at the top level" : "in \"" + path + "\"") +
+                     " has no name attribute");
+  return x.getAttribute("name");
+}
+
+/// Scans a <ParameterList> element: names unique, values of int/double/bool/arrays valid.
+void scan_list(const Teuchos::XMLObject& list, const std::string& path, const std::string& file) {
+  std::set<std::string> seen;
+  for (int i = 0; i < list.numChildren(); ++i) {
+    const Teuchos::XMLObject& child = list.getChild(i);
+    if (child.getTag() != "Parameter" && child.getTag() != "ParameterList") continue;
+    const std::string name = name_of(child, file, path);
+    const std::string p = path.empty() ? name : path + "/" + name;
+    if (!seen.insert(name).second)
+      fail(file, p, {"given twice", "each name once per list"});
+    if (child.getTag() == "ParameterList") {
+      scan_list(child, p, file);
+      continue;
+    }
+    const std::string type = child.hasAttribute("type") ? child.getAttribute("type") : "";
+    if (type.empty() || !child.hasAttribute("value"))
+      fail(file, p, {"needs type and value attributes",
+                     "<Parameter name=\"" + name + "\" type=\"double\" value=\"1\"/>"});
+    const std::string& value = child.getAttribute("value");
+    if (!value_is_valid(type, value))
+      fail(file, p, {"value \"" + value + "\" is not a valid " + type, value_hint(type)});
+  }
+}
+
+}  // namespace
+
+Teuchos::RCP<Teuchos::ParameterList> read_xml(const std::string& file) {
+  check_readable(file);
+  try {
+    Teuchos::FileInputSource source(file);
+    const Teuchos::XMLObject xml = source.getObject();
+    if (xml.getTag() != "ParameterList")
+      cannot_read(file, "the top element is <" + xml.getTag() + ">, not <ParameterList>");
+    scan_list(xml, "", file);
+    return Teuchos::getParametersFromXmlFile(file);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    cannot_read(file, condense(e.what()));
+  }
+}
+
+}  // namespace emc::input::detail

@@ -1,0 +1,80 @@
+#include "emcontact/linalg/elimination.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <TpetraExt_MatrixMatrix.hpp>
+#include <TpetraExt_TripleMatrixMultiply.hpp>
+
+#include <algorithm>
+#include <map>
+
+namespace emc::linalg {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+
+Elimination::Elimination(RCP<const Map> owned) : owned_(owned) { set_constraints({}, {}, {}); }
+
+// ALGORITHM.md §3: P is the identity except in constrained rows; D holds the dummies' diagonal.
+void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vector<PRow>& rows,
+                                  const std::vector<std::pair<GO, double>>& dummy_diag) {
+  int local = fixed.empty() && rows.empty() ? 0 : 1, global = 0;
+  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 1, &local, &global);
+  identity_ = global == 0;
+
+  std::map<GO, const PRow*> special;
+  for (const auto& r : rows) special[r.row] = &r;
+  std::vector<char> is_fixed(owned_->getNodeNumElements(), 0);
+  for (GO g : fixed) is_fixed[owned_->getLocalElement(g)] = 1;
+
+  std::size_t width = 1;
+  for (const auto& r : rows) width = std::max(width, r.cols.size());
+  P_ = rcp(new Matrix(owned_, width));
+  const double one = 1.0;
+  for (LO l = 0; l < static_cast<LO>(owned_->getNodeNumElements()); ++l) {
+    const GO g = owned_->getGlobalElement(l);
+    auto it = special.find(g);
+    if (it != special.end()) {
+      P_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(it->second->cols),
+                             Teuchos::ArrayView<const double>(it->second->weights));
+    } else if (!is_fixed[l]) {
+      P_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
+                             Teuchos::ArrayView<const double>(&one, 1));
+    }
+  }
+  P_->fillComplete(owned_, owned_);
+
+  D_ = rcp(new Matrix(owned_, 1));
+  std::map<GO, double> diag;
+  for (GO g : fixed) diag[g] = 1.0;
+  for (const auto& [g, v] : dummy_diag) diag[g] = v;
+  for (const auto& [g, v] : diag)
+    D_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
+                           Teuchos::ArrayView<const double>(&v, 1));
+  D_->fillComplete(owned_, owned_);
+}
+
+RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
+  if (identity_) return A;
+  RCP<Matrix> PtAP = rcp(new Matrix(owned_, 0));
+  Tpetra::TripleMatrixMultiply::MultiplyRAP(*P_, true, *A, false, *P_, false, *PtAP, true,
+                                            "emcontact::linalg::PtAP");
+  return Tpetra::MatrixMatrix::add(1.0, false, *PtAP, 1.0, false, *D_);
+}
+
+void Elimination::reduce_residual(const Vector& g, Vector& R) const {
+  if (identity_) {
+    R.assign(g);
+    return;
+  }
+  P_->apply(g, R, Teuchos::TRANS);
+}
+
+void Elimination::expand(const Vector& dq, Vector& du) const {
+  if (identity_) {
+    du.assign(dq);
+    return;
+  }
+  P_->apply(dq, du, Teuchos::NO_TRANS);
+}
+
+}  // namespace emc::linalg

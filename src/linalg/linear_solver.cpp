@@ -1,0 +1,114 @@
+#include "emcontact/linalg/linear_solver.hpp"
+
+#include <BelosSolverFactory_Tpetra.hpp>
+#include <BelosTpetraAdapter.hpp>
+#include <Teuchos_TimeMonitor.hpp>
+
+#include <cstdio>
+
+namespace emc::linalg {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+
+LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm> comm)
+    : type_(linear.get<std::string>("type")),
+      prec_type_(linear.get<std::string>("preconditioner")),
+      tol_(linear.get<double>("tolerance")),
+      check_factor_(linear.get<double>("residual check factor")),
+      max_iters_(linear.get<int>("max iterations")),
+      reuse_(linear.get<bool>("reuse preconditioner")) {
+  if (linear.isSublist("Belos")) belos_ = linear.sublist("Belos");
+  if (linear.isSublist("Ifpack2")) ifpack2_ = linear.sublist("Ifpack2");
+  if (linear.isSublist("MueLu")) muelu_ = linear.sublist("MueLu");
+  if (type_ == "klu2" && comm->getSize() > 1)
+    throw InputError(
+        "Solver/Linear/type = klu2 runs on one rank only (Debian's Amesos2 KLU2 is wrong on "
+        "2+ ranks); allowed on " + std::to_string(comm->getSize()) + " ranks: gmres, cg");
+}
+
+std::string LinearSolver::description() const {
+  if (type_ == "klu2") return "Amesos2 KLU2";
+  return "Belos " + std::string(type_ == "cg" ? "CG" : "GMRES") + " + " + prec_type_;
+}
+
+void LinearSolver::build_preconditioner(const RCP<Matrix>& A) {
+  Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: preconditioner"));
+  if (prec_type_ == "none")
+    prec_ = Teuchos::null;
+  else if (prec_type_ == "muelu")
+    prec_ = make_muelu(A, muelu_);
+  else
+    prec_ = make_ifpack2(prec_type_, A, ifpack2_);
+}
+
+int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, bool& converged,
+                              std::string& message) {
+  using Problem = Belos::LinearProblem<double, MultiVector, Operator>;
+  auto params = rcp(new Teuchos::ParameterList);
+  params->set("Convergence Tolerance", tol_);
+  params->set("Maximum Iterations", max_iters_);
+  if (type_ == "gmres") {
+    params->set("Num Blocks", std::min(max_iters_, 300));
+    params->set("Maximum Restarts", std::max(1, max_iters_ / 300 + 1));
+  }
+  params->set("Implicit Residual Scaling", "Norm of RHS");
+  params->set("Explicit Residual Scaling", "Norm of RHS");
+  params->setParameters(belos_);
+  x.putScalar(0.0);
+  auto problem = rcp(new Problem(A, Teuchos::rcpFromRef(x), Teuchos::rcpFromRef(b)));
+  if (!prec_.is_null()) problem->setRightPrec(prec_);
+  problem->setProblem();
+  Belos::SolverFactory<double, MultiVector, Operator> factory;
+  auto solver = factory.create(type_ == "cg" ? "CG" : "GMRES", params);
+  solver->setProblem(problem);
+  const Belos::ReturnType ret = solver->solve();
+  converged = ret == Belos::Converged;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "Belos %s returned %s after %d iterations (achieved %.3g)",
+                type_ == "cg" ? "CG" : "GMRES", converged ? "Converged" : "Unconverged",
+                solver->getNumIters(), solver->achievedTol());
+  message = buf;
+  return solver->getNumIters();
+}
+
+SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x) {
+  SolveStats st;
+  std::string message;
+  if (type_ == "klu2") {
+    solve_klu2(A, b, x);
+    message = "Amesos2 KLU2 direct solve";
+  } else {
+    if (prec_.is_null() || !reuse_) {
+      build_preconditioner(A);
+      st.fresh_preconditioner = true;
+    }
+    bool converged = false;
+    st.iterations = belos_solve(A, b, x, converged, message);
+    const bool slow = st.iterations > std::max(2 * fresh_iters_, fresh_iters_ + 10);
+    if (!st.fresh_preconditioner && (!converged || slow)) {  // the reused one stopped working
+      build_preconditioner(A);
+      st.fresh_preconditioner = true;
+      st.iterations += belos_solve(A, b, x, converged, message);
+    }
+    if (st.fresh_preconditioner) fresh_iters_ = st.iterations;
+  }
+  // true residual check
+  Vector r(b.getMap());
+  A->apply(x, r);
+  r.update(1.0, b, -1.0);
+  const double bn = b.norm2();
+  st.true_residual = bn > 0 ? r.norm2() / bn : r.norm2();
+  if (!(st.true_residual <= check_factor_ * tol_) && bn > 0) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "linear solver (%s) failed: true relative residual %.3e exceeds %.3e "
+                  "(residual check factor x tolerance); ",
+                  description().c_str(), st.true_residual, check_factor_ * tol_);
+    prec_ = Teuchos::null;
+    throw LinearSolveError(buf + message);
+  }
+  return st;
+}
+
+}  // namespace emc::linalg

@@ -1,0 +1,59 @@
+// Schema of the `Solver` section.
+#include "emcontact/linalg/parameters.hpp"
+
+#include "emcontact/input/validators.hpp"
+
+namespace emc::linalg {
+namespace {
+
+using namespace emc::input;
+
+void set_newton(Teuchos::ParameterList& pl) {
+  pl.set("relative tolerance", 1e-10,
+         "Newton converges when the residual norm falls below this fraction of the "
+         "step's initial residual norm (or below the absolute tolerance).",
+         positive_double());
+  pl.set("absolute tolerance", 0.0, "Absolute tolerance of the Newton residual norm (0 = not used).",
+         double_at_least(0.0));
+  pl.set("max iterations", 25,
+         "Newton iterations per step before the step counts as failed.",
+         int_at_least(1));
+}
+
+void set_linear(Teuchos::ParameterList& pl) {
+  pl.set("type", std::string("gmres"), "Linear solver.",
+         string_choice("type", {"gmres", "cg", "klu2"},
+                       {"Belos GMRES (iterative)", "Belos conjugate gradients (iterative)",
+                        "Amesos2 KLU2 (direct)"}));
+  pl.set("preconditioner", std::string("ilu"),
+         "Preconditioner of the iterative solvers (ignored by klu2).",
+         string_choice("preconditioner", {"ilu", "schwarz", "muelu", "none"},
+                       {"Ifpack2 ILU", "Ifpack2 additive Schwarz",
+                        "MueLu algebraic multigrid", "no preconditioner"}));
+  pl.set("tolerance", 1e-10, "Relative residual tolerance of the iterative solvers.",
+         positive_double());
+  pl.set("max iterations", 1000, "Iterations of the iterative solvers.", int_at_least(1));
+  pl.set("reuse preconditioner", true,
+         "Reuse the preconditioner setup across solves where possible.");
+  pl.set("residual check factor", 100.0,
+         "After each solve the true relative residual must be below factor * tolerance, "
+         "else the run fails.",
+         double_at_least(1.0));
+  pl.sublist("Belos", false, "Passed unchanged to the Belos solver (any content).")
+      .disableRecursiveValidation();
+  pl.sublist("Ifpack2", false, "Passed unchanged to Ifpack2 (any content).")
+      .disableRecursiveValidation();
+  pl.sublist("MueLu", false, "Passed unchanged to MueLu (any content).")
+      .disableRecursiveValidation();
+}
+
+}  // namespace
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Solver"));
+  set_newton(pl->sublist("Newton", false, "Newton iteration of each time step."));
+  set_linear(pl->sublist("Linear", false, "Linear solver of each Newton iteration."));
+  return pl;
+}
+
+}  // namespace emc::linalg

@@ -1,0 +1,31 @@
+#include <Ifpack2_Factory.hpp>
+
+#include "emcontact/linalg/linear_solver.hpp"
+
+namespace emc::linalg {
+
+// `ilu`: RILUK(0); `schwarz`: restricted additive Schwarz with overlap 1 and RILUK(0) inside
+// (measured best of the Ifpack2 options on 2 ranks, see README "Toolchain"). The user's
+// `Ifpack2` sublist overrides these defaults unchanged.
+Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<const Matrix>& A,
+                                    const Teuchos::ParameterList& user) {
+  Teuchos::ParameterList p;
+  std::string name = "RILUK";
+  if (type == "schwarz") {
+    name = "SCHWARZ";
+    p.set("schwarz: overlap level", 1);
+    p.set("schwarz: combine mode", "ZERO");  // restricted additive Schwarz
+    p.set("schwarz: inner preconditioner name", "RILUK");
+    p.sublist("schwarz: inner preconditioner parameters").set("fact: iluk level-of-fill", 0);
+  } else {
+    p.set("fact: iluk level-of-fill", 0);
+  }
+  p.setParameters(user);
+  auto prec = Ifpack2::Factory::create<Matrix>(name, A);
+  prec->setParameters(p);
+  prec->initialize();
+  prec->compute();
+  return prec;
+}
+
+}  // namespace emc::linalg

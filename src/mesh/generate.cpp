@@ -1,0 +1,291 @@
+// Built-in meshes through Gmsh's OpenCASCADE kernel (box, cylinder, hollow cylinder, spherical
+// shell), their named surfaces, and the dispatch of a validated `Mesh` sublist.
+#include "emcontact/mesh/generate.hpp"
+
+#include <gmsh.h>
+
+#include <Teuchos_Array.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <tuple>
+#include <utility>
+
+#include "emcontact/error.hpp"
+#include "src/mesh/internal.hpp"
+
+namespace emc::mesh {
+namespace {
+
+using Vec3 = std::array<double, 3>;
+using Tri = std::array<int, 3>;
+
+/// Upper bound on the estimated tet count of a built-in mesh (a too small `size` would
+/// otherwise exhaust the memory inside Gmsh).
+constexpr double kMaxEstimatedTets = 2e7;
+
+/// A built-in shape: how to create it in Gmsh, how to name its boundary triangles and its
+/// exact volume (for the element count estimate).
+struct Shape {
+  std::function<void()> add_to_gmsh;  ///< adds exactly one OCC volume to the current model
+  std::function<std::string(const std::array<Vec3, 3>&)> surface_of;  ///< "" if unknown
+  double volume = 0.0;
+};
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+std::string str(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// ---- parameters -------------------------------------------------------------------------
+
+/// The text of a Teuchos exception without its file/line/"Throw number" preamble.
+std::string teuchos_message(const std::string& what) {
+  const std::size_t test = what.find("Throw test that evaluated to true");
+  const std::size_t body = test == std::string::npos ? test : what.find("\n\n", test);
+  std::string msg = body == std::string::npos ? what : what.substr(body + 2);
+  while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
+  return msg;
+}
+
+/// A copy of `in` validated against valid_mesh_parameters(), defaults filled in.
+Teuchos::ParameterList validated(const Teuchos::ParameterList& in, const std::string& where) {
+  Teuchos::ParameterList p(in);
+  try {
+    p.validateParametersAndSetDefaults(*valid_mesh_parameters());
+  } catch (const std::exception& e) {
+    throw InputError(where + ": " + teuchos_message(e.what()));
+  }
+  return p;
+}
+
+double positive_param(const Teuchos::ParameterList& p, const std::string& name,
+                      const std::string& where) {
+  const double v = p.get<double>(name);
+  if (!(v > 0.0) || !std::isfinite(v)) {
+    throw InputError(where + ": parameter '" + name + "' is " + str(v) +
+                     "; it must be a finite number > 0");
+  }
+  return v;
+}
+
+Vec3 point_param(const Teuchos::ParameterList& p, const std::string& name,
+                 const std::string& where) {
+  const auto& a = p.get<Teuchos::Array<double>>(name);
+  if (a.size() != 3) {
+    throw InputError(where + ": parameter '" + name + "' has " + std::to_string(a.size()) +
+                     " components; it must have 3 (x, y, z), e.g. {0, 0, 0}");
+  }
+  for (double v : a) {
+    if (!std::isfinite(v)) {
+      throw InputError(where + ": parameter '" + name + "' has a non-finite component");
+    }
+  }
+  return {a[0], a[1], a[2]};
+}
+
+/// `inner radius` and `outer radius`, with inner < outer.
+std::pair<double, double> radii_params(const Teuchos::ParameterList& p, const std::string& where) {
+  const double ri = positive_param(p, "inner radius", where);
+  const double ro = positive_param(p, "outer radius", where);
+  if (!(ri < ro)) {
+    throw InputError(where + ": parameter 'inner radius' (" + str(ri) +
+                     ") must be smaller than 'outer radius' (" + str(ro) + ")");
+  }
+  return {ri, ro};
+}
+
+// ---- shapes -----------------------------------------------------------------------------
+
+/// True if every node of `t` satisfies |f(node)| < tol.
+bool all_near(const std::array<Vec3, 3>& t, const std::function<double(const Vec3&)>& f,
+              double tol) {
+  return std::abs(f(t[0])) < tol && std::abs(f(t[1])) < tol && std::abs(f(t[2])) < tol;
+}
+
+Shape box_shape(const Teuchos::ParameterList& p, const std::string& where) {
+  const Vec3 lo = point_param(p, "lower corner", where);
+  const Vec3 hi = point_param(p, "upper corner", where);
+  const char* axes = "xyz";
+  Shape s;
+  s.volume = 1.0;
+  for (int d = 0; d < 3; ++d) {
+    if (!(hi[d] > lo[d])) {
+      throw InputError(where + ": parameter 'upper corner' must exceed 'lower corner' in every "
+                       "component; " + std::string(1, axes[d]) + ": " + str(hi[d]) +
+                       " <= " + str(lo[d]));
+    }
+    s.volume *= hi[d] - lo[d];
+  }
+  s.add_to_gmsh = [lo, hi] {
+    gmsh::model::occ::addBox(lo[0], lo[1], lo[2], hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  };
+  const double tol = 1e-7 * norm(sub(hi, lo));
+  s.surface_of = [lo, hi, tol](const std::array<Vec3, 3>& t) -> std::string {
+    static const char* names[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
+    for (int d = 0; d < 3; ++d) {
+      if (all_near(t, [&](const Vec3& x) { return x[d] - lo[d]; }, tol)) return names[d][0];
+      if (all_near(t, [&](const Vec3& x) { return x[d] - hi[d]; }, tol)) return names[d][1];
+    }
+    return "";
+  };
+  return s;
+}
+
+/// Solid (`hollow` false: parameter `radius`) or hollow (`inner/outer radius`) cylinder.
+Shape cylinder_shape(const Teuchos::ParameterList& p, const std::string& where, bool hollow) {
+  const Vec3 c = point_param(p, "center", where);
+  const Vec3 axis = point_param(p, "axis", where);
+  const double h = positive_param(p, "height", where);
+  const double len = norm(axis);
+  if (!(len > 0.0)) throw InputError(where + ": parameter 'axis' must be a nonzero vector");
+  const Vec3 a{axis[0] / len, axis[1] / len, axis[2] / len};
+  double ri = 0.0, ro = 0.0;
+  if (hollow) {
+    std::tie(ri, ro) = radii_params(p, where);
+  } else {
+    ro = positive_param(p, "radius", where);
+  }
+  Shape s;
+  s.volume = M_PI * (ro * ro - ri * ri) * h;
+  s.add_to_gmsh = [c, a, h, ri, ro, hollow] {
+    const int outer = gmsh::model::occ::addCylinder(c[0], c[1], c[2], h * a[0], h * a[1],
+                                                    h * a[2], ro);
+    if (!hollow) return;
+    // The hole overshoots both ends so that the cut has no coincident faces.
+    const Vec3 b{c[0] - 0.1 * h * a[0], c[1] - 0.1 * h * a[1], c[2] - 0.1 * h * a[2]};
+    const int inner = gmsh::model::occ::addCylinder(b[0], b[1], b[2], 1.2 * h * a[0],
+                                                    1.2 * h * a[1], 1.2 * h * a[2], ri);
+    gmsh::vectorpair out;
+    std::vector<gmsh::vectorpair> map;
+    gmsh::model::occ::cut({{3, outer}}, {{3, inner}}, out, map);
+  };
+  const double tol = 1e-7 * std::max(h, ro);
+  s.surface_of = [c, a, h, ri, ro, hollow, tol](const std::array<Vec3, 3>& t) -> std::string {
+    const auto height = [&](const Vec3& x) { return dot(sub(x, c), a); };
+    if (all_near(t, height, tol)) return "bottom";
+    if (all_near(t, [&](const Vec3& x) { return height(x) - h; }, tol)) return "top";
+    double r = 0.0;  // mean distance of the nodes from the axis
+    for (const Vec3& x : t) {
+      const Vec3 d = sub(x, c);
+      const double z = dot(d, a);
+      r += norm({d[0] - z * a[0], d[1] - z * a[1], d[2] - z * a[2]}) / 3.0;
+    }
+    return hollow && r < 0.5 * (ri + ro) ? "inner" : "outer";
+  };
+  return s;
+}
+
+Shape shell_shape(const Teuchos::ParameterList& p, const std::string& where) {
+  const Vec3 c = point_param(p, "center", where);
+  const auto [ri, ro] = radii_params(p, where);
+  Shape s;
+  s.volume = 4.0 / 3.0 * M_PI * (ro * ro * ro - ri * ri * ri);
+  s.add_to_gmsh = [c, ri = ri, ro = ro] {
+    const int outer = gmsh::model::occ::addSphere(c[0], c[1], c[2], ro);
+    const int inner = gmsh::model::occ::addSphere(c[0], c[1], c[2], ri);
+    gmsh::vectorpair out;
+    std::vector<gmsh::vectorpair> map;
+    gmsh::model::occ::cut({{3, outer}}, {{3, inner}}, out, map);
+  };
+  s.surface_of = [c, ri = ri, ro = ro](const std::array<Vec3, 3>& t) -> std::string {
+    const double r = (norm(sub(t[0], c)) + norm(sub(t[1], c)) + norm(sub(t[2], c))) / 3.0;
+    return r < 0.5 * (ri + ro) ? "inner" : "outer";
+  };
+  return s;
+}
+
+// ---- meshing ----------------------------------------------------------------------------
+
+/// Swaps two nodes of every tet the generator left with a negative volume.
+void orient_positive(BodyMesh& m) {
+  for (int e = 0; e < m.num_tets(); ++e) {
+    if (tet_volume(m, e) < 0.0) std::swap(m.tets[4 * e + 2], m.tets[4 * e + 3]);
+  }
+}
+
+/// Fills m.surfaces by naming every boundary triangle with `shape.surface_of`.
+void name_surfaces(BodyMesh& m, const Shape& shape, const std::string& where) {
+  for (const Tri& t : boundary_triangles(m)) {
+    std::array<Vec3, 3> x{};
+    for (int k = 0; k < 3; ++k) x[k] = {m.X[3 * t[k]], m.X[3 * t[k] + 1], m.X[3 * t[k] + 2]};
+    const std::string name = shape.surface_of(x);
+    if (name.empty()) {
+      throw Error(where + ": internal error: a boundary triangle of the generated mesh lies on "
+                          "no face of the shape");
+    }
+    m.surfaces[name].push_back(t);  // boundary_triangles is sorted, so each surface is too
+  }
+}
+
+/// The tet mesh of `shape` with target edge length `size`.
+BodyMesh generate(const Shape& shape, double size, const std::string& where) {
+  const double estimate = 8.5 * shape.volume / (size * size * size);  // regular tets of edge size
+  if (estimate > kMaxEstimatedTets) {
+    throw InputError(where + ": parameter 'size' (" + str(size) + ") is too small for this body: "
+                     "about " + str(estimate) + " tetrahedra, the limit is " +
+                     str(kMaxEstimatedTets));
+  }
+  detail::GmshSession session;
+  BodyMesh m;
+  detail::with_gmsh(where, "Gmsh failed to mesh the body", [&] {
+    gmsh::model::add("body");
+    shape.add_to_gmsh();
+    gmsh::model::occ::synchronize();
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
+    gmsh::option::setNumber("Mesh.MeshSizeMax", size);
+    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+    gmsh::option::setNumber("Mesh.Optimize", 1);
+    gmsh::model::mesh::generate(3);
+    std::vector<std::size_t> used_tags;
+    m = detail::body_from_gmsh(detail::gmsh_tets({}, where), used_tags);
+  });
+  orient_positive(m);
+  check_tets(m, where + " (generated mesh)");
+  name_surfaces(m, shape, where);
+  return m;
+}
+
+/// Type `file`: resolves `file` against `input_dir` and reads it.
+BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& input_dir,
+                        const std::string& where) {
+  const std::string file = p.get<std::string>("file");
+  if (file.empty()) {
+    throw InputError(where + ": parameter 'file' is empty; type 'file' needs a Gmsh .msh 4.1 "
+                     "file (relative to the input file's directory)");
+  }
+  std::filesystem::path path(file);
+  if (path.is_relative() && !input_dir.empty()) path = std::filesystem::path(input_dir) / path;
+  const std::string resolved = path.lexically_normal().string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(resolved, ec)) {
+    throw InputError(where + ": parameter 'file': mesh file '" + resolved + "' does not exist");
+  }
+  return read_msh(resolved, p.get<std::string>("volume"), where);
+}
+
+}  // namespace
+
+BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string& input_dir,
+                    const std::string& where) {
+  const Teuchos::ParameterList p = validated(mesh_params, where);
+  const std::string type = p.get<std::string>("type");
+  if (type == "file") return mesh_from_file(p, input_dir, where);
+  const double size = positive_param(p, "size", where);
+  if (type == "box") return generate(box_shape(p, where), size, where);
+  if (type == "cylinder") return generate(cylinder_shape(p, where, false), size, where);
+  if (type == "hollow cylinder") return generate(cylinder_shape(p, where, true), size, where);
+  if (type == "spherical shell") return generate(shell_shape(p, where), size, where);
+  throw InputError(where + ": parameter 'type' is '" + type + "'; allowed: 'box', 'cylinder', "
+                   "'hollow cylinder', 'spherical shell', 'file'");
+}
+
+}  // namespace emc::mesh

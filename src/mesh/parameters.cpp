@@ -1,0 +1,71 @@
+// The valid parameters of a body's `Mesh` sublist (defaults, validators, doc strings). Array
+// lengths and cross-parameter conditions are checked by build_mesh.
+#include <Teuchos_Array.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+#include <limits>
+
+#include "emcontact/mesh/generate.hpp"
+
+namespace emc::mesh {
+namespace {
+
+/// Validator of a strictly positive double (the smallest normal double is the inclusive min).
+Teuchos::RCP<const Teuchos::ParameterEntryValidator> positive() {
+  return Teuchos::rcp(new Teuchos::EnhancedNumberValidator<double>(
+      std::numeric_limits<double>::min(), std::numeric_limits<double>::max()));
+}
+
+void set_positive(Teuchos::ParameterList& pl, const std::string& name, double value,
+                  const std::string& doc) {
+  pl.set(name, value, doc + " (> 0)", positive());
+}
+
+void set_point(Teuchos::ParameterList& pl, const std::string& name, double x, double y, double z,
+               const std::string& doc) {
+  pl.set(name, Teuchos::Array<double>(Teuchos::tuple(x, y, z)), doc + " (3 components: x, y, z)");
+}
+
+}  // namespace
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Mesh"));
+  Teuchos::setStringToIntegralParameter<int>(
+      "type", "box",
+      "Shape of the body: a built-in Gmsh mesh ('box', 'cylinder', 'hollow cylinder', "
+      "'spherical shell') or a Gmsh .msh 4.1 file ('file')",
+      Teuchos::tuple<std::string>("box", "cylinder", "hollow cylinder", "spherical shell", "file"),
+      Teuchos::tuple<std::string>(
+          "axis-aligned box between 'lower corner' and 'upper corner'; surfaces xmin, xmax, "
+          "ymin, ymax, zmin, zmax",
+          "solid cylinder ('center' of the base disk, 'axis', 'height', 'radius'); surfaces "
+          "bottom, top, outer",
+          "hollow cylinder ('center', 'axis', 'height', 'inner radius', 'outer radius'); "
+          "surfaces bottom, top, outer, inner",
+          "spherical shell ('center', 'inner radius', 'outer radius'); surfaces outer, inner",
+          "Gmsh .msh 4.1 file ('file', 'volume'); surfaces: its physical surfaces"),
+      Teuchos::tuple<int>(0, 1, 2, 3, 4), pl.get());
+  pl->set("file", std::string(""),
+          "Gmsh .msh 4.1 file (type 'file'), relative to the input file's directory; its "
+          "physical surfaces become the named surfaces");
+  pl->set("volume", std::string(""),
+          "Physical volume of 'file' to use (type 'file'); empty: all 4-node tetrahedra");
+  set_positive(*pl, "size", 0.1, "Target element edge length of the built-in meshes");
+  set_point(*pl, "lower corner", 0.0, 0.0, 0.0, "Lower corner of the box (type 'box')");
+  set_point(*pl, "upper corner", 1.0, 1.0, 1.0,
+            "Upper corner of the box (type 'box'), above 'lower corner' in every component");
+  set_point(*pl, "center", 0.0, 0.0, 0.0,
+            "Center of the base disk (cylinders, surface 'bottom') or of the sphere (spherical "
+            "shell)");
+  set_point(*pl, "axis", 0.0, 0.0, 1.0,
+            "Direction of the cylinder axis, from 'bottom' to 'top' (not normalized, nonzero)");
+  set_positive(*pl, "height", 0.1, "Cylinder height along 'axis'");
+  set_positive(*pl, "radius", 0.1, "Radius of the solid cylinder (type 'cylinder')");
+  set_positive(*pl, "inner radius", 0.05,
+               "Inner radius ('hollow cylinder', 'spherical shell'), below 'outer radius'");
+  set_positive(*pl, "outer radius", 0.1,
+               "Outer radius ('hollow cylinder', 'spherical shell'), above 'inner radius'");
+  return pl;
+}
+
+}  // namespace emc::mesh

@@ -1,0 +1,112 @@
+// Atomic file replacement (temp file + fsync + rename) and `mkdir -p`.
+#include "emcontact/output/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "emcontact/error.hpp"
+
+namespace emc::output {
+namespace {
+
+/// "what 'path': strerror(err)" as an emc::Error.
+Error os_error(const std::string& what, const std::string& path, int err) {
+  return Error(what + " '" + path + "': " + std::strerror(err));
+}
+
+/// The directory part of `path` ("." if it has none).
+std::string parent_directory(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+/// Writes all of `content` to `fd`, retrying on EINTR and short writes. Returns 0 or errno.
+int write_all(int fd, const std::string& content) {
+  const char* p = content.data();
+  std::size_t left = content.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return 0;
+}
+
+/// Best effort: makes the rename itself durable. Failure here is not an error (some file
+/// systems refuse fsync on directories) since the data was already synced.
+void sync_directory(const std::string& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  (void)::fsync(fd);
+  ::close(fd);
+}
+
+/// The temporary name used for `path`: same directory, so the rename stays on one file system.
+std::string temp_name(const std::string& path) {
+  return path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+}
+
+}  // namespace
+
+void atomic_write(const std::string& path, const std::string& content) {
+  const std::string tmp = temp_name(path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw os_error("cannot create", path, errno);
+  int err = write_all(fd, content);
+  if (err == 0 && ::fsync(fd) != 0) err = errno;
+  if (::close(fd) != 0 && err == 0) err = errno;
+  if (err != 0) {
+    ::unlink(tmp.c_str());
+    throw os_error("cannot write", path, err);
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    err = errno;
+    ::unlink(tmp.c_str());
+    throw os_error("cannot rename '" + tmp + "' to", path, err);
+  }
+  sync_directory(parent_directory(path));
+}
+
+void atomic_commit(const std::string& tmp_path, const std::string& path) {
+  int err = 0;
+  const int fd = ::open(tmp_path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    err = errno;
+  } else {
+    if (::fsync(fd) != 0) err = errno;
+    ::close(fd);
+  }
+  if (err == 0 && ::rename(tmp_path.c_str(), path.c_str()) != 0) err = errno;
+  if (err != 0) {
+    ::unlink(tmp_path.c_str());
+    throw os_error("cannot commit '" + tmp_path + "' to", path, err);
+  }
+  sync_directory(parent_directory(path));
+}
+
+void make_directory(const std::string& dir) {
+  if (dir.empty()) return;
+  // Create every prefix ending before a '/', then the whole path (mkdir -p).
+  for (std::size_t pos = dir.find('/', 1);; pos = dir.find('/', pos + 1)) {
+    const std::string prefix = dir.substr(0, pos);
+    if (::mkdir(prefix.c_str(), 0755) != 0 && errno != EEXIST) {
+      throw os_error("cannot create directory", dir, errno);
+    }
+    if (pos == std::string::npos) break;
+  }
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) != 0) throw os_error("cannot create directory", dir, errno);
+  if (!S_ISDIR(st.st_mode)) throw os_error("cannot create directory", dir, ENOTDIR);
+}
+
+}  // namespace emc::output

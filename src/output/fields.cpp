@@ -1,0 +1,244 @@
+// Field output: DIR/mesh.h5 once, DIR/fields_<step>.h5 per frame, DIR/fields.xdmf as the index
+// ParaView opens (a temporal collection of tetrahedral grids sharing mesh.h5).
+#include "emcontact/output/fields.hpp"
+
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <utility>
+
+#include "emcontact/error.hpp"
+#include "emcontact/output/atomic_file.hpp"
+
+namespace emc::output {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// HDF5 helpers
+
+/// Silences HDF5's automatic error printing while alive (errors are reported by exceptions).
+class SilenceHdf5Errors {
+ public:
+  SilenceHdf5Errors() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~SilenceHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+  SilenceHdf5Errors(const SilenceHdf5Errors&) = delete;
+  SilenceHdf5Errors& operator=(const SilenceHdf5Errors&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+/// Walks the HDF5 error stack; keeps the innermost description, which for file errors holds
+/// the OS error text ("errno = 2, error message = 'No such file or directory'").
+herr_t keep_innermost(unsigned /*n*/, const H5E_error2_t* e, void* client) {
+  if (e->desc != nullptr && e->desc[0] != '\0') *static_cast<std::string*>(client) = e->desc;
+  return 0;
+}
+
+/// The current HDF5 error as text (then clears the stack).
+std::string hdf5_error_text() {
+  std::string text;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, keep_innermost, &text);
+  H5Eclear2(H5E_DEFAULT);
+  return text.empty() ? "unknown HDF5 error" : text;
+}
+
+/// Throws emc::Error naming `path` and what failed.
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw Error("cannot write HDF5 file '" + path + "': " + what + ": " + hdf5_error_text());
+}
+
+/// Owns an HDF5 id; closes it with the matching H5?close on scope exit.
+class Handle {
+ public:
+  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  ~Handle() { reset(); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  hid_t get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  /// Closes now; returns false if HDF5 reported an error (e.g. a failed flush on H5Fclose).
+  bool reset() {
+    const hid_t id = std::exchange(id_, H5I_INVALID_HID);
+    return id < 0 || close_(id) >= 0;
+  }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+/// One dataset to write: its name, shape, HDF5 types and the contiguous data.
+struct DatasetSpec {
+  const char* name;
+  std::vector<hsize_t> dims;  // empty = scalar
+  hid_t file_type;
+  hid_t mem_type;
+  const void* data;
+};
+
+/// Writes one contiguous (unchunked, uncompressed: fastest) dataset into `file`.
+void write_dataset(hid_t file, const std::string& path, const DatasetSpec& d) {
+  Handle space(d.dims.empty()
+                   ? H5Screate(H5S_SCALAR)
+                   : H5Screate_simple(static_cast<int>(d.dims.size()), d.dims.data(), nullptr),
+               H5Sclose);
+  if (!space.valid()) fail(path, std::string("dataspace of ") + d.name);
+  Handle set(
+      H5Dcreate2(file, d.name, d.file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose);
+  if (!set.valid()) fail(path, std::string("creating dataset ") + d.name);
+  hsize_t count = 1;
+  for (hsize_t n : d.dims) count *= n;
+  // HDF5 refuses a null buffer even for zero elements: skip the (empty) write.
+  if (count > 0 && H5Dwrite(set.get(), d.mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.data) < 0) {
+    fail(path, std::string("writing dataset ") + d.name);
+  }
+  if (!set.reset()) fail(path, std::string("closing dataset ") + d.name);
+}
+
+/// Writes `datasets` into a new HDF5 file `path`, atomically: a temp file in the same directory,
+/// closed, then fsync'ed and renamed over `path` by atomic_commit.
+void write_hdf5_atomically(const std::string& path, const std::vector<DatasetSpec>& datasets) {
+  SilenceHdf5Errors quiet;
+  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+  try {
+    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+    if (!file.valid()) fail(path, "creating '" + tmp + "'");
+    for (const DatasetSpec& d : datasets) write_dataset(file.get(), path, d);
+    if (!file.reset()) fail(path, "closing '" + tmp + "'");
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  atomic_commit(tmp, path);
+}
+
+// ---------------------------------------------------------------------------------------------
+// XDMF helpers
+
+/// A double as "%.17g" (exact round trip, locale independent).
+std::string format_double(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), v, std::chars_format::general, 17);
+  return std::string(buf, res.ptr);
+}
+
+/// "fields_00000042.h5": the per-frame file name, relative to the output directory.
+std::string frame_file_name(long step) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "fields_%08ld.h5", step);
+  return buf;
+}
+
+/// An XDMF HDF DataItem: `dims` like "1000 3", `type` "Float"/"Int", precision in bytes.
+std::string data_item(const std::string& dims, const char* type, int precision,
+                      const std::string& ref, const char* indent) {
+  return std::string(indent) + "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + type +
+         "\" Precision=\"" + std::to_string(precision) + "\" Format=\"HDF\">" + ref +
+         "</DataItem>\n";
+}
+
+/// An XDMF Attribute wrapping one DataItem.
+std::string attribute(const char* name, const char* type, const char* center,
+                      const std::string& item) {
+  return std::string("        <Attribute Name=\"") + name + "\" AttributeType=\"" + type +
+         "\" Center=\"" + center + "\">\n" + item + "        </Attribute>\n";
+}
+
+}  // namespace
+
+FieldWriter::FieldWriter(std::string dir, const std::vector<double>& X,
+                         const std::vector<long long>& tets, const std::vector<int>& body_of_tet)
+    : dir_(std::move(dir)) {
+  if (X.size() % 3 != 0) throw Error("FieldWriter: node coordinates are not 3 per node");
+  if (tets.size() % 4 != 0) throw Error("FieldWriter: tetrahedra are not 4 nodes each");
+  num_nodes_ = static_cast<long long>(X.size() / 3);
+  num_tets_ = static_cast<long long>(tets.size() / 4);
+  if (static_cast<long long>(body_of_tet.size()) != num_tets_) {
+    throw Error("FieldWriter: " + std::to_string(body_of_tet.size()) + " body ids for " +
+                std::to_string(num_tets_) + " tetrahedra");
+  }
+  make_directory(dir_);
+  const hsize_t n = static_cast<hsize_t>(num_nodes_), e = static_cast<hsize_t>(num_tets_);
+  write_hdf5_atomically(dir_ + "/mesh.h5",
+                        {{"/geometry", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, X.data()},
+                         {"/topology", {e, 4}, H5T_STD_I64LE, H5T_NATIVE_LLONG, tets.data()},
+                         {"/body", {e}, H5T_STD_I32LE, H5T_NATIVE_INT, body_of_tet.data()}});
+}
+
+void FieldWriter::write(const FieldFrame& f) {
+  const auto n3 = static_cast<std::size_t>(3 * num_nodes_);
+  const auto e = static_cast<std::size_t>(num_tets_);
+  if (f.displacement.size() != n3 || f.velocity.size() != n3 || f.von_mises.size() != e) {
+    throw Error("FieldWriter: frame of step " + std::to_string(f.step) +
+                " has wrong sizes (displacement " + std::to_string(f.displacement.size()) +
+                ", velocity " + std::to_string(f.velocity.size()) + ", von_mises " +
+                std::to_string(f.von_mises.size()) + "; expected " + std::to_string(n3) + ", " +
+                std::to_string(n3) + ", " + std::to_string(e) + ")");
+  }
+  const hsize_t n = static_cast<hsize_t>(num_nodes_);
+  const long long step = f.step;
+  write_hdf5_atomically(
+      dir_ + "/" + frame_file_name(f.step),
+      {{"/displacement", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.displacement.data()},
+       {"/velocity", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.velocity.data()},
+       {"/von_mises", {e}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.von_mises.data()},
+       {"/time", {}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &f.time},
+       {"/step", {}, H5T_STD_I64LE, H5T_NATIVE_LLONG, &step}});
+  // A step written again (e.g. the final frame) replaces its entry instead of duplicating it.
+  auto same = std::find_if(frames_.begin(), frames_.end(),
+                           [&](const auto& fr) { return fr.first == f.step; });
+  if (same != frames_.end()) {
+    same->second = f.time;
+  } else {
+    frames_.emplace_back(f.step, f.time);
+  }
+  write_xdmf();
+}
+
+void FieldWriter::write_xdmf() const {
+  const std::string n = std::to_string(num_nodes_), e = std::to_string(num_tets_);
+  const char* in = "          ";  // DataItem indentation
+  // The mesh parts are the same in every grid.
+  const std::string topology =
+      "        <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" + e +
+      "\" NodesPerElement=\"4\">\n" + data_item(e + " 4", "Int", 8, "mesh.h5:/topology", in) +
+      "        </Topology>\n";
+  const std::string geometry = "        <Geometry GeometryType=\"XYZ\">\n" +
+                               data_item(n + " 3", "Float", 8, "mesh.h5:/geometry", in) +
+                               "        </Geometry>\n";
+  const std::string body =
+      attribute("body", "Scalar", "Cell", data_item(e, "Int", 4, "mesh.h5:/body", in));
+
+  std::string x =
+      "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+      "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n"
+      "  <Domain>\n"
+      "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& [step, time] : frames_) {
+    const std::string file = frame_file_name(step);
+    x += "      <Grid Name=\"step_" + std::to_string(step) + "\" GridType=\"Uniform\">\n";
+    x += "        <Time Value=\"" + format_double(time) + "\"/>\n";
+    x += topology + geometry;
+    x += attribute("displacement", "Vector", "Node",
+                   data_item(n + " 3", "Float", 8, file + ":/displacement", in));
+    x += attribute("velocity", "Vector", "Node",
+                   data_item(n + " 3", "Float", 8, file + ":/velocity", in));
+    x += attribute("von_mises", "Scalar", "Cell",
+                   data_item(e, "Float", 8, file + ":/von_mises", in));
+    x += body;
+    x += "      </Grid>\n";
+  }
+  x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  atomic_write(dir_ + "/fields.xdmf", x);
+}
+
+}  // namespace emc::output

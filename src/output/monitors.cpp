@@ -1,0 +1,207 @@
+// DIR/monitors.csv: formatting, incremental atomic rewriting, and parsing back.
+#include "emcontact/output/monitors.hpp"
+
+#include <charconv>
+#include <chrono>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "emcontact/error.hpp"
+#include "emcontact/output/atomic_file.hpp"
+
+namespace emc::output {
+namespace {
+
+/// The fixed columns, in file order (the first 16 of any valid header).
+constexpr const char* kColumns[] = {"step",
+                                    "time",
+                                    "kinetic",
+                                    "elastic",
+                                    "potential",
+                                    "total",
+                                    "Lx",
+                                    "Ly",
+                                    "Lz",
+                                    "Jx",
+                                    "Jy",
+                                    "Jz",
+                                    "active_contacts",
+                                    "newton_iterations",
+                                    "dt",
+                                    "linear_iterations",
+                                    "com_x",
+                                    "com_y",
+                                    "com_z"};
+constexpr std::size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
+
+/// Appends `v` as printf("%.17g") would in the C locale (std::to_chars is specified so),
+/// which round-trips every double exactly.
+void append_double(std::string& out, double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), v, std::chars_format::general, 17);
+  out.append(buf, res.ptr);
+}
+
+/// Appends an integer in decimal.
+void append_integer(std::string& out, long long v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), v);
+  out.append(buf, res.ptr);
+}
+
+/// Seconds on the steady clock (never jumps back, unlike the wall clock).
+double steady_seconds() {
+  using Clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+/// Splits a CSV line on ',' (no quoting: monitors.csv holds numbers only).
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> fields;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(line.substr(start, comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+/// Parses the whole of `s` as a T (double or integer); throws std::invalid_argument otherwise.
+template <typename T>
+T parse_number(const std::string& s) {
+  T value{};
+  const char* first = s.data();
+  const char* last = s.data() + s.size();
+  if (first != last && *first == '+') ++first;  // from_chars refuses a leading '+'
+  const auto res = std::from_chars(first, last, value);
+  if (res.ec != std::errc() || res.ptr != last || first == last) {
+    throw std::invalid_argument("'" + s + "' is not a valid number");
+  }
+  return value;
+}
+
+/// Fills a row from the first kNumColumns fields (already checked to be there).
+MonitorRow parse_row(const std::vector<std::string>& f) {
+  MonitorRow r;
+  std::size_t i = 0;
+  r.step = parse_number<long>(f[i++]);
+  r.time = parse_number<double>(f[i++]);
+  r.kinetic = parse_number<double>(f[i++]);
+  r.elastic = parse_number<double>(f[i++]);
+  r.potential = parse_number<double>(f[i++]);
+  r.total = parse_number<double>(f[i++]);
+  for (double& x : r.L) x = parse_number<double>(f[i++]);
+  for (double& x : r.J) x = parse_number<double>(f[i++]);
+  r.active_contacts = parse_number<int>(f[i++]);
+  r.newton_iterations = parse_number<int>(f[i++]);
+  r.dt = parse_number<double>(f[i++]);
+  r.linear_iterations = parse_number<int>(f[i++]);
+  for (double& x : r.com) x = parse_number<double>(f[i++]);
+  return r;
+}
+
+/// Removes a trailing '\r' (a file edited on Windows).
+void chomp(std::string& line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+}
+
+/// Checks that the header starts with the fixed columns; returns its number of columns.
+std::size_t check_header(const std::string& path, const std::string& line) {
+  const std::vector<std::string> names = split_csv(line);
+  bool ok = names.size() >= kNumColumns;
+  for (std::size_t i = 0; ok && i < kNumColumns; ++i) ok = names[i] == kColumns[i];
+  if (!ok) {
+    throw Error(path + ":1: not a monitors file: the header must start with '" + monitor_header() +
+                "', got '" + line + "'");
+  }
+  return names.size();
+}
+
+}  // namespace
+
+std::string monitor_header() {
+  std::string h;
+  for (std::size_t i = 0; i < kNumColumns; ++i) {
+    if (i > 0) h += ',';
+    h += kColumns[i];
+  }
+  return h;
+}
+
+std::string format_row(const MonitorRow& r) {
+  std::string s;
+  s.reserve(400);
+  append_integer(s, r.step);
+  for (double v : {r.time, r.kinetic, r.elastic, r.potential, r.total, r.L[0], r.L[1], r.L[2],
+                   r.J[0], r.J[1], r.J[2]}) {
+    s += ',';
+    append_double(s, v);
+  }
+  s += ',';
+  append_integer(s, r.active_contacts);
+  s += ',';
+  append_integer(s, r.newton_iterations);
+  s += ',';
+  append_double(s, r.dt);
+  s += ',';
+  append_integer(s, r.linear_iterations);
+  for (double v : r.com) {
+    s += ',';
+    append_double(s, v);
+  }
+  return s;
+}
+
+MonitorWriter::MonitorWriter(std::string path) : path_(std::move(path)) {
+  text_ = monitor_header() + '\n';
+}
+
+void MonitorWriter::append(const MonitorRow& r) {
+  rows_.push_back(r);
+  text_ += format_row(r);
+  text_ += '\n';
+}
+
+void MonitorWriter::flush(bool force, double min_seconds) {
+  const double now = steady_seconds();
+  if (!force) {
+    const bool never_written = last_write_ == -1e300;
+    if (!never_written && written_ == rows_.size()) return;  // nothing new
+    if (now - last_write_ < min_seconds) return;             // too soon
+  }
+  atomic_write(path_, text_);
+  last_write_ = now;
+  written_ = rows_.size();
+}
+
+std::vector<MonitorRow> read_monitors(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error("cannot open monitors file '" + path + "'");
+  std::string line;
+  if (!std::getline(in, line)) throw Error(path + ":1: empty monitors file");
+  chomp(line);
+  const std::size_t num_columns = check_header(path, line);
+  std::vector<MonitorRow> rows;
+  for (long line_no = 2; std::getline(in, line); ++line_no) {
+    chomp(line);
+    if (line.empty()) continue;
+    const std::vector<std::string> fields = split_csv(line);
+    const std::string where = path + ":" + std::to_string(line_no) + ": ";
+    if (fields.size() != num_columns) {
+      throw Error(where + "expected " + std::to_string(num_columns) + " fields, got " +
+                  std::to_string(fields.size()));
+    }
+    try {
+      rows.push_back(parse_row(fields));
+    } catch (const std::invalid_argument& e) {
+      throw Error(where + e.what());
+    }
+  }
+  if (in.bad()) throw Error("error reading monitors file '" + path + "'");
+  return rows;
+}
+
+}  // namespace emc::output

@@ -1,0 +1,19 @@
+// Schema of the `Output` section.
+#include "emcontact/output/parameters.hpp"
+
+#include "emcontact/input/validators.hpp"
+
+namespace emc::output {
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
+  using namespace emc::input;
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Output"));
+  pl->set("directory", std::string("output"),
+          "Directory of monitors.csv and the field files (created if missing).", any_string());
+  pl->set("every", 10, "Field output (HDF5/XDMF) every N steps; 0 = no field output.",
+          int_at_least(0));
+  pl->set("progress", true, "Print a progress line per step on the terminal.");
+  return pl;
+}
+
+}  // namespace emc::output

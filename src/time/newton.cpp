@@ -1,0 +1,97 @@
+#include "emcontact/time/newton.hpp"
+
+#include <Teuchos_TimeMonitor.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace emc::time {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+using Teuchos::TimeMonitor;
+
+NewtonOptions newton_options(const Teuchos::ParameterList& newton) {
+  NewtonOptions o;
+  o.rtol = newton.get<double>("relative tolerance");
+  o.atol = newton.get<double>("absolute tolerance");
+  o.max_iterations = newton.get<int>("max iterations");
+  return o;
+}
+
+Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
+               linalg::LinearSolver& solver, NewtonOptions opt)
+    : disc_(disc), elim_(elim), solver_(solver), opt_(opt) {
+  A_ = rcp(new FEMatrix(disc_.graph()));
+}
+
+NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
+  static auto& t_asm = *TimeMonitor::getNewTimer("emcontact: assembly");
+  static auto& t_elim = *TimeMonitor::getNewTimer("emcontact: elimination");
+  static auto& t_solve = *TimeMonitor::getNewTimer("emcontact: linear solve");
+  const auto map = disc_.owned_map();
+  Vector g(map), scale(map), R(map), dq(map), du(map);
+  NewtonResult res;
+  double r0 = 0;
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (int it = 0;; ++it) {
+    fem::AssemblyInfo info;
+    {
+      TimeMonitor tm(t_asm);
+      info = disc_.assemble(u0, V0, u1, dt, A_.get(), g, &scale);
+    }
+    if (!(info.min_detF > 0)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "element %lld inverted (det F = %.3e) at Newton iterate %d",
+                    info.worst_tet + 1, info.min_detF, it);
+      res.failure = buf;
+      return res;
+    }
+    RCP<Matrix> Ar;
+    {
+      TimeMonitor tm(t_elim);
+      elim_.reduce_residual(g, R);
+    }
+    const double r = R.norm2();
+    res.residuals.push_back(r);
+    if (!std::isfinite(r)) {
+      res.failure = "residual is not finite at Newton iterate " + std::to_string(it);
+      return res;
+    }
+    if (it == 0) r0 = r;
+    // ALGORITHM.md §1: the tolerance never sits below the round-off of g's terms
+    const double floor = std::max(opt_.atol, 100 * eps * scale.norm2());
+    if (r <= std::max(opt_.rtol * r0, floor) && (it > 0 || r <= floor)) {
+      res.converged = true;
+      return res;
+    }
+    if (it >= opt_.max_iterations) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "Newton did not converge in %d iterations (residual %.3e, initial %.3e, "
+                    "target %.3e)",
+                    it, r, r0, std::max(opt_.rtol * r0, floor));
+      res.failure = buf;
+      return res;
+    }
+    {
+      TimeMonitor tm(t_elim);
+      Ar = elim_.reduce_matrix(A_);
+    }
+    R.scale(-1.0);
+    try {
+      TimeMonitor tm(t_solve);
+      const auto st = solver_.solve(Ar, R, dq);
+      res.linear_iterations += st.iterations;
+    } catch (const linalg::LinearSolveError& e) {
+      res.failure = e.what();
+      return res;
+    }
+    elim_.expand(dq, du);
+    u1.update(1.0, du, 1.0);
+    ++res.iterations;
+  }
+}
+
+}  // namespace emc::time

@@ -1,0 +1,419 @@
+// Unit tests of the input module: defaults, one-paragraph errors (file, path, allowed),
+// overrides, pass-through sublists, cross checks and the generated documentation.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <Teuchos_StandardParameterEntryValidators.hpp>
+
+#include "emcontact/error.hpp"
+#include "emcontact/input/detail.hpp"
+#include "emcontact/input/input.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using emc::input::read_input;
+using Teuchos::Array;
+using Teuchos::ParameterList;
+
+/// Parts of a small valid input (one box body "ball"); each test adds or replaces pieces.
+struct Xml {
+  std::string time = R"(<Parameter name="dt" type="double" value="0.01"/>
+      <Parameter name="end" type="double" value="0.02"/>)";
+  std::string material = R"(<Parameter name="young" type="double" value="1e5"/>)";
+  std::string initial;
+  std::string mesh = R"X(<Parameter name="type" type="string" value="box"/>
+        <Parameter name="upper corner" type="Array(double)" value="{0.1, 0.1, 0.1}"/>
+        <Parameter name="size" type="double" value="0.05"/>)X";
+  std::string bodies_extra;
+  std::string sections;  ///< more top-level sublists
+
+  std::string str() const {
+    return R"(<ParameterList name="test">
+  <ParameterList name="Time">
+      )" + time + R"(
+  </ParameterList>
+  <ParameterList name="Bodies">
+    <ParameterList name="ball">
+      <ParameterList name="Mesh">
+        )" + mesh + R"(
+      </ParameterList>
+      <ParameterList name="Material">
+        )" + material + R"(
+      </ParameterList>
+      <ParameterList name="Initial">
+        )" + initial + R"(
+      </ParameterList>
+    </ParameterList>
+    )" + bodies_extra + R"(
+  </ParameterList>
+  )" + sections + R"(
+</ParameterList>
+)";
+  }
+};
+
+class InputTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("emc_test_input_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& text, const std::string& name = "in.xml") {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  emc::input::Input read(const Xml& xml, const std::vector<std::string>& overrides = {}) {
+    return read_input(write(xml.str()), overrides);
+  }
+  /// The InputError message of reading `xml` (with `overrides`), "" if none was thrown.
+  std::string error(const Xml& xml, const std::vector<std::string>& overrides = {}) {
+    return error_of_file(write(xml.str()), overrides);
+  }
+  std::string error_of_file(const std::string& file, const std::vector<std::string>& overrides) {
+    try {
+      read_input(file, overrides);
+    } catch (const emc::InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  fs::path dir_;
+};
+
+/// Checks `message` is one line and contains every one of `parts`.
+void expect_message(const std::string& message, const std::vector<std::string>& parts) {
+  ASSERT_FALSE(message.empty()) << "no InputError";
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  for (const auto& p : parts) EXPECT_NE(message.find(p), std::string::npos) << p << " | " << message;
+}
+
+Array<double> vec(double x, double y, double z) { return Teuchos::tuple(x, y, z); }
+
+// ---------------------------------------------------------------- defaults
+
+TEST_F(InputTest, DefaultsAreFilled) {
+  const auto in = read(Xml{});
+  const ParameterList& p = *in.params;
+  EXPECT_EQ(in.dir, dir_.string());
+  const auto& time = p.sublist("Time");
+  EXPECT_EQ(time.get<double>("dt"), 0.01);
+  EXPECT_EQ(time.get<std::string>("integrator"), "energy-momentum");
+  EXPECT_EQ(time.get<int>("max step cuts"), 6);
+  EXPECT_EQ(time.get<int>("grow after"), 4);
+  const auto& body = p.sublist("Bodies").sublist("ball");
+  EXPECT_EQ(body.sublist("Material").get<double>("young"), 1e5);
+  EXPECT_EQ(body.sublist("Material").get<double>("poisson"), 0.3);
+  EXPECT_EQ(body.sublist("Material").get<double>("density"), 1000.0);
+  EXPECT_EQ(body.sublist("Initial").get<Array<double>>("velocity"), vec(0, 0, 0));
+  EXPECT_EQ(body.sublist("Initial").get<Array<double>>("angular velocity"), vec(0, 0, 0));
+  EXPECT_TRUE(body.sublist("Mesh").isParameter("lower corner"));  // mesh defaults too
+  EXPECT_EQ(p.sublist("Loads").get<Array<double>>("gravity"), vec(0, 0, 0));
+  EXPECT_TRUE(p.isSublist("Dirichlet"));
+  EXPECT_EQ(p.sublist("Dirichlet").numParams(), 0);
+  const auto& newton = p.sublist("Solver").sublist("Newton");
+  EXPECT_EQ(newton.get<double>("relative tolerance"), 1e-10);
+  EXPECT_EQ(newton.get<double>("absolute tolerance"), 0.0);
+  EXPECT_EQ(newton.get<int>("max iterations"), 25);
+  const auto& linear = p.sublist("Solver").sublist("Linear");
+  EXPECT_EQ(linear.get<std::string>("type"), "gmres");
+  EXPECT_EQ(linear.get<std::string>("preconditioner"), "ilu");
+  EXPECT_EQ(linear.get<double>("tolerance"), 1e-10);
+  EXPECT_EQ(linear.get<int>("max iterations"), 1000);
+  EXPECT_EQ(linear.get<bool>("reuse preconditioner"), true);
+  EXPECT_EQ(linear.get<double>("residual check factor"), 100.0);
+  EXPECT_TRUE(linear.isSublist("Belos") && linear.isSublist("Ifpack2") && linear.isSublist("MueLu"));
+  const auto& output = p.sublist("Output");
+  EXPECT_EQ(output.get<std::string>("directory"), "output");
+  EXPECT_EQ(output.get<int>("every"), 10);
+  EXPECT_EQ(output.get<bool>("progress"), true);
+}
+
+TEST_F(InputTest, IntegralValueOfChoices) {
+  Xml x;
+  x.time += R"(<Parameter name="integrator" type="string" value="midpoint"/>)";
+  const auto in = read(x);
+  EXPECT_EQ(Teuchos::getIntegralValue<int>(in.params->sublist("Time"), "integrator"), 1);
+}
+
+// ---------------------------------------------------------------- bad values
+
+TEST_F(InputTest, NegativeDtRefused) {
+  Xml x;
+  x.time = R"(<Parameter name="dt" type="double" value="-0.01"/>)";
+  expect_message(error(x), {"in.xml: parameter \"Time/dt\"", "-0.01", "allowed: a double > 0"});
+}
+
+TEST_F(InputTest, PoissonOneHalfRefused) {
+  Xml x;
+  x.material += R"(<Parameter name="poisson" type="double" value="0.5"/>)";
+  expect_message(error(x),
+                 {"in.xml: parameter \"Bodies/ball/Material/poisson\"", ">= 0 and < 0.5"});
+}
+
+TEST_F(InputTest, UnknownIntegratorRefused) {
+  Xml x;
+  x.time += R"(<Parameter name="integrator" type="string" value="leapfrog"/>)";
+  expect_message(error(x), {"parameter \"Time/integrator\"", "\"leapfrog\"",
+                            "allowed: one of \"energy-momentum\", \"midpoint\""});
+}
+
+TEST_F(InputTest, MisspeltNameRefused) {
+  Xml x;
+  x.material = R"(<Parameter name="youngs" type="double" value="1e5"/>)";
+  expect_message(error(x), {"parameter \"Bodies/ball/Material/youngs\"", "unknown name",
+                            "did you mean \"young\"", "allowed: young, poisson, density"});
+}
+
+TEST_F(InputTest, WrongTypeRefused) {
+  Xml x;
+  x.time = R"(<Parameter name="dt" type="string" value="abc"/>)";
+  expect_message(error(x), {"parameter \"Time/dt\"", "has type string", "expected type double",
+                            "allowed: a double > 0"});
+}
+
+TEST_F(InputTest, IntThatIsNotAnIntRefused) {  // Teuchos would silently read 0
+  Xml x;
+  x.time += R"(<Parameter name="max step cuts" type="int" value="abc"/>)";
+  expect_message(error(x), {"parameter \"Time/max step cuts\"", "\"abc\"", "integer"});
+}
+
+TEST_F(InputTest, IntOutOfRangeRefused) {
+  Xml x;
+  x.time += R"(<Parameter name="max step cuts" type="int" value="21"/>)";
+  expect_message(error(x), {"parameter \"Time/max step cuts\"", "from 0 to 20"});
+}
+
+TEST_F(InputTest, ArrayOfTwoRefused) {
+  Xml x;
+  x.initial = R"X(<Parameter name="velocity" type="Array(double)" value="{1, 2}"/>)X";
+  expect_message(error(x), {"parameter \"Bodies/ball/Initial/velocity\"", "has 2 components",
+                            "3 numbers"});
+}
+
+TEST_F(InputTest, MeshArrayOfTwoRefused) {
+  Xml x;
+  x.mesh += R"X(<Parameter name="lower corner" type="Array(double)" value="{1, 2}"/>)X";
+  expect_message(error(x), {"parameter \"Bodies/ball/Mesh/lower corner\"", "3 numbers"});
+}
+
+TEST_F(InputTest, UnknownSectionRefused) {
+  Xml x;
+  x.sections = R"(<ParameterList name="Contact"/>)";
+  expect_message(error(x), {"parameter \"Contact\"", "unknown section",
+                            "Time, Bodies, Loads, Dirichlet, Solver, Output"});
+}
+
+TEST_F(InputTest, SublistGivenAsParameterRefused) {
+  Xml x;
+  x.sections = R"(<Parameter name="Output" type="int" value="1"/>)";
+  expect_message(error(x), {"parameter \"Output\"", "must be a sublist"});
+}
+
+TEST_F(InputTest, DuplicateNameRefused) {
+  Xml x;
+  x.time += R"(<Parameter name="dt" type="double" value="0.02"/>)";
+  expect_message(error(x), {"parameter \"Time/dt\"", "given twice"});
+}
+
+TEST_F(InputTest, MissingFileRefused) {
+  const std::string file = (dir_ / "missing.xml").string();
+  expect_message(error_of_file(file, {}), {file + ": cannot read", "no such file"});
+}
+
+TEST_F(InputTest, MalformedXmlRefused) {
+  const std::string file = write("<ParameterList name=\"x\">\n  <ParameterList name=\"Time\">\n");
+  expect_message(error_of_file(file, {}), {file + ": cannot read", "XML parse error"});
+}
+
+// ---------------------------------------------------------------- cross checks
+
+TEST_F(InputTest, NoBodyRefused) {
+  const std::string file = write(R"(<ParameterList name="x"><ParameterList name="Bodies"/>
+    </ParameterList>)");
+  expect_message(error_of_file(file, {}), {"parameter \"Bodies\"", "no body", "at least one"});
+}
+
+TEST_F(InputTest, EndBeforeDtRefused) {
+  Xml x;
+  x.time = R"(<Parameter name="dt" type="double" value="0.1"/>
+              <Parameter name="end" type="double" value="0.05"/>)";
+  expect_message(error(x), {"parameter \"Time/end\"", "smaller than dt"});
+}
+
+TEST_F(InputTest, DirichletOnUnknownBodyRefused) {
+  Xml x;
+  x.sections = R"(<ParameterList name="Dirichlet"><ParameterList name="fix">
+      <Parameter name="body" type="string" value="bal"/>
+      <Parameter name="surface" type="string" value="zmin"/>
+    </ParameterList></ParameterList>)";
+  expect_message(error(x), {"parameter \"Dirichlet/fix/body\"", "\"bal\" is not a body",
+                            "allowed: the name of a body: ball"});
+}
+
+TEST_F(InputTest, DirichletWithoutSurfaceRefused) {
+  Xml x;
+  x.sections = R"(<ParameterList name="Dirichlet"><ParameterList name="fix">
+      <Parameter name="body" type="string" value="ball"/>
+    </ParameterList></ParameterList>)";
+  expect_message(error(x), {"parameter \"Dirichlet/fix/surface\"", "required"});
+}
+
+TEST_F(InputTest, DirichletAccepted) {
+  Xml x;
+  x.sections = R"(<ParameterList name="Dirichlet"><ParameterList name="fix">
+      <Parameter name="body" type="string" value="ball"/>
+      <Parameter name="surface" type="string" value="zmin"/>
+    </ParameterList></ParameterList>)";
+  const auto in = read(x);
+  EXPECT_EQ(in.params->sublist("Dirichlet").sublist("fix").get<std::string>("surface"), "zmin");
+}
+
+// ---------------------------------------------------------------- overrides
+
+TEST_F(InputTest, OverridesOfEveryType) {
+  const auto in = read(Xml{}, {"Time/end=0.5", "Time/max step cuts=3", "Time/integrator=midpoint",
+                               "Output/progress=false", "Bodies/ball/Initial/velocity={1,0,0}",
+                               "Bodies/ball/Material/young=4e6", "Solver/Linear/tolerance=1e-8"});
+  const ParameterList& p = *in.params;
+  EXPECT_EQ(p.sublist("Time").get<double>("end"), 0.5);
+  EXPECT_EQ(p.sublist("Time").get<int>("max step cuts"), 3);
+  EXPECT_EQ(p.sublist("Time").get<std::string>("integrator"), "midpoint");
+  EXPECT_EQ(p.sublist("Output").get<bool>("progress"), false);
+  const auto& body = p.sublist("Bodies").sublist("ball");
+  EXPECT_EQ(body.sublist("Initial").get<Array<double>>("velocity"), vec(1, 0, 0));
+  EXPECT_EQ(body.sublist("Material").get<double>("young"), 4e6);
+  EXPECT_EQ(p.sublist("Solver").sublist("Linear").get<double>("tolerance"), 1e-8);
+}
+
+TEST_F(InputTest, OverrideReplacesWrongTypeInFile) {
+  Xml x;
+  x.time = R"(<Parameter name="dt" type="string" value="abc"/>)";
+  const auto in = read(x, {"Time/dt=0.001"});
+  EXPECT_EQ(in.params->sublist("Time").get<double>("dt"), 0.001);
+}
+
+TEST_F(InputTest, OverrideOfUnknownPathRefused) {
+  expect_message(error(Xml{}, {"Time/dtt=1"}),
+                 {"override \"Time/dtt=1\"", "unknown parameter", "did you mean \"dt\"", "dt, end"});
+  expect_message(error(Xml{}, {"Timing/dt=1"}), {"override \"Timing/dt=1\"", "unknown section"});
+  expect_message(error(Xml{}, {"Bodies/bal/Material/young=1"}),
+                 {"override \"Bodies/bal/Material/young=1\"", "\"bal\" is not a body", "ball"});
+  expect_message(error(Xml{}, {"Solver/Nwton/max iterations=1"}),
+                 {"no sublist \"Nwton\"", "Newton, Linear"});
+  expect_message(error(Xml{}, {"Solver/Newton=1"}), {"\"Newton\" is a sublist"});
+  expect_message(error(Xml{}, {"Time/dt"}), {"override \"Time/dt\"", "name=value"});
+}
+
+TEST_F(InputTest, OverrideWithBadValueRefused) {
+  expect_message(error(Xml{}, {"Time/dt=abc"}),
+                 {"override \"Time/dt=abc\"", "not a valid double", "allowed: a double > 0"});
+  expect_message(error(Xml{}, {"Time/dt=-1"}),
+                 {"override \"Time/dt=-1\"", "out of range", "allowed: a double > 0"});
+  expect_message(error(Xml{}, {"Time/integrator=euler"}), {"\"midpoint\""});
+  expect_message(error(Xml{}, {"Output/progress=maybe"}), {"bool"});
+  expect_message(error(Xml{}, {"Time/grow after=1.5"}), {"not a valid int"});
+  expect_message(error(Xml{}, {"Loads/gravity={0,-9.81}"}),
+                 {"override \"Loads/gravity={0,-9.81}\"", "has 2 components"});
+}
+
+// ---------------------------------------------------------------- pass-through sublists
+
+TEST_F(InputTest, PassThroughAcceptsAnyContent) {
+  Xml x;
+  x.sections = R"(<ParameterList name="Solver"><ParameterList name="Linear">
+      <ParameterList name="Belos">
+        <Parameter name="Convergence Tolerance" type="double" value="1e-5"/>
+        <Parameter name="Orthogonalization" type="string" value="ICGS"/>
+      </ParameterList>
+      <ParameterList name="MueLu">
+        <Parameter name="verbosity" type="string" value="none"/>
+        <ParameterList name="level 0"><Parameter name="x" type="int" value="1"/></ParameterList>
+      </ParameterList>
+    </ParameterList></ParameterList>)";
+  const auto in = read(x, {"Solver/Linear/Belos/Maximum Iterations=50",
+                           "Solver/Linear/Belos/Convergence Tolerance=1",
+                           "Solver/Linear/Belos/Implicit Residual Scaling=Norm of RHS",
+                           "Solver/Linear/Ifpack2/fact: drop tolerance=0.5",
+                           "Solver/Linear/Ifpack2/schwarz: use reordering=true",
+                           "Solver/Linear/MueLu/smoother: params/relaxation: sweeps=2"});
+  const auto& linear = in.params->sublist("Solver").sublist("Linear");
+  const auto& belos = linear.sublist("Belos");
+  EXPECT_EQ(belos.get<int>("Maximum Iterations"), 50);
+  EXPECT_EQ(belos.get<double>("Convergence Tolerance"), 1.0);  // keeps the file's type
+  EXPECT_EQ(belos.get<std::string>("Orthogonalization"), "ICGS");
+  EXPECT_EQ(belos.get<std::string>("Implicit Residual Scaling"), "Norm of RHS");
+  EXPECT_EQ(linear.sublist("Ifpack2").get<double>("fact: drop tolerance"), 0.5);
+  EXPECT_EQ(linear.sublist("Ifpack2").get<bool>("schwarz: use reordering"), true);
+  const auto& muelu = linear.sublist("MueLu");
+  EXPECT_EQ(muelu.get<std::string>("verbosity"), "none");
+  EXPECT_EQ(muelu.sublist("level 0").get<int>("x"), 1);
+  EXPECT_EQ(muelu.sublist("smoother: params").get<int>("relaxation: sweeps"), 2);
+}
+
+TEST_F(InputTest, PassThroughOverrideKeepsExistingType) {
+  Xml x;
+  x.sections = R"(<ParameterList name="Solver"><ParameterList name="Linear">
+      <ParameterList name="Belos"><Parameter name="Num Blocks" type="int" value="30"/></ParameterList>
+    </ParameterList></ParameterList>)";
+  expect_message(error(x, {"Solver/Linear/Belos/Num Blocks=abc"}), {"not a valid int"});
+}
+
+// ---------------------------------------------------------------- helpers and docs
+
+TEST(InputDetail, FormatsValuesAndRanges) {
+  using namespace emc::input::detail;
+  EXPECT_EQ(format_double(0.01), "0.01");
+  EXPECT_EQ(format_double(1e-10), "1e-10");
+  EXPECT_EQ(format_double(1000), "1000");
+  EXPECT_EQ(format_double(1e6), "1e6");
+  EXPECT_EQ(format_double(-9.81), "-9.81");
+  EXPECT_EQ(format_value(Teuchos::any(vec(0, 0, -9.81))), "{0, 0, -9.81}");
+  EXPECT_EQ(condense("a.cpp:50:\n\nThrow number = 1\n\nThrow test that evaluated to true: x\n\n"
+                     "XML parse error at line 5\n"),
+            "XML parse error at line 5");
+  EXPECT_EQ(Teuchos::any_cast<int>(guess_value("12")), 12);
+  EXPECT_EQ(Teuchos::any_cast<double>(guess_value("1e3")), 1000.0);
+  EXPECT_EQ(Teuchos::any_cast<bool>(guess_value("false")), false);
+  EXPECT_EQ(Teuchos::any_cast<std::string>(guess_value("ICGS")), "ICGS");
+  EXPECT_THROW(parse_value("1.5x", Teuchos::any(1.0)), std::invalid_argument);
+  EXPECT_THROW(parse_value("nan", Teuchos::any(1.0)), std::invalid_argument);
+}
+
+TEST_F(InputTest, DocumentedExampleIsValid) {
+  const auto in = read_input(write(emc::input::detail::example_xml()), {});
+  EXPECT_EQ(in.params->sublist("Dirichlet").sublist("clamped end").get<std::string>("body"),
+            "block");
+}
+
+TEST(InputDocs, TablesListEveryParameter) {
+  const std::string md = emc::input::schema_markdown();
+  for (const char* row :
+       {"| `dt` | double | `0.01` | > 0 |", "| `integrator` | string | `energy-momentum` |",
+        "| `max step cuts` | int | `6` | from 0 to 20 |", "| `poisson` | double | `0.3` | >= 0 and < 0.5 |",
+        "| `velocity` | Array(double) | `{0, 0, 0}` | 3 numbers |", "| `Belos` | sublist |",
+        "| `progress` | bool | `true` | `true`, `false` |", "### `Bodies/<body>/Mesh`",
+        "### `Dirichlet/<condition>`", "### `Solver/Linear`", "```xml"})
+    EXPECT_NE(md.find(row), std::string::npos) << row;
+}
+
+TEST(InputSchema, ValidParametersHasEverySection) {
+  const auto all = emc::input::valid_parameters();
+  for (const char* s : {"Time", "Bodies", "Loads", "Dirichlet", "Solver", "Output"})
+    EXPECT_TRUE(all->isSublist(s)) << s;
+  EXPECT_TRUE(all->sublist("Bodies").sublist("<body>").isSublist("Mesh"));
+  EXPECT_TRUE(all->sublist("Dirichlet").sublist("<condition>").isParameter("surface"));
+}
+
+}  // namespace

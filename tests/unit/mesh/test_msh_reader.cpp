@@ -1,0 +1,214 @@
+// Reading Gmsh .msh 4.1 files: a file written by Gmsh itself (round trip) and hand-written
+// two-tet files (valid, inverted element, broken, not a mesh).
+#include <gmsh.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+
+#include "emcontact/error.hpp"
+#include "emcontact/mesh/generate.hpp"
+#include "mesh_test_util.hpp"
+
+namespace emc::mesh::test {
+namespace {
+
+/// What the test itself asked Gmsh to write: Gmsh node tags of the tets and of the physical
+/// surface "left" (x = 0), and every node's coordinates.
+struct Written {
+  std::vector<std::size_t> tet_nodes;
+  std::vector<std::size_t> left_nodes;
+  std::map<std::size_t, Vec3> coords;
+};
+
+/// Meshes the box [0,1]x[0,2]x[0,0.5] with Gmsh, with physical volume "solid" and physical
+/// surfaces "left" (x = 0) and "rest" (the other five faces), and writes it as .msh 4.1.
+Written write_box_msh(const std::string& file) {
+  gmsh::initialize(0, nullptr, false);
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::model::add("roundtrip");
+  const int volume = gmsh::model::occ::addBox(0, 0, 0, 1, 2, 0.5);
+  gmsh::model::occ::synchronize();
+  gmsh::vectorpair faces;
+  gmsh::model::getEntities(faces, 2);
+  std::vector<int> left, rest;
+  for (const auto& f : faces) {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(2, f.second, x0, y0, z0, x1, y1, z1);
+    (x1 < 1e-9 ? left : rest).push_back(f.second);
+  }
+  gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 7), "solid");
+  gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, left, 1), "left");
+  gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, rest, 2), "rest");
+  gmsh::option::setNumber("Mesh.MeshSizeMax", 0.3);
+  gmsh::model::mesh::generate(3);
+
+  Written w;
+  std::vector<std::size_t> tags;
+  gmsh::model::mesh::getElementsByType(4, tags, w.tet_nodes);
+  gmsh::model::mesh::getElementsByType(2, tags, w.left_nodes, left.at(0));
+  std::vector<double> xyz, params;
+  gmsh::model::mesh::getNodes(tags, xyz, params, -1, -1, false, false);
+  for (std::size_t i = 0; i < tags.size(); ++i) {
+    w.coords[tags[i]] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+  }
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::write(file);
+  gmsh::finalize();
+  return w;
+}
+
+/// Gmsh node tags -> read_msh's node indices (increasing tag order of the used nodes).
+std::vector<int> to_local(const std::vector<std::size_t>& tags, const Written& w) {
+  std::vector<std::size_t> used = w.tet_nodes;
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::vector<int> out;
+  for (std::size_t t : tags) {
+    out.push_back(static_cast<int>(std::lower_bound(used.begin(), used.end(), t) - used.begin()));
+  }
+  return out;
+}
+
+std::string read_error(const std::string& file, const std::string& volume = "") {
+  try {
+    read_msh(file, volume, "input.xml: Bodies/b/Mesh");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ReadMsh, RoundTripOfGmshWrittenFile) {
+  ScratchDir dir("roundtrip");
+  const std::string file = dir.file("box.msh");
+  const Written w = write_box_msh(file);
+  const BodyMesh m = read_msh(file, "solid", "test");
+
+  // Same tets, in Gmsh's order, on the same nodes.
+  EXPECT_EQ(m.tets, to_local(w.tet_nodes, w));
+  const std::vector<int> local = to_local(w.tet_nodes, w);
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    const Vec3 x = w.coords.at(w.tet_nodes[i]);
+    for (int d = 0; d < 3; ++d) ASSERT_NEAR(m.X[3 * local[i] + d], x[d], 1e-14);
+  }
+  EXPECT_GT(min_volume(m), 0.0);
+  EXPECT_NEAR(total_volume(m), 1.0, 1e-12);
+
+  // Same named surfaces, oriented outward, covering the boundary.
+  ASSERT_EQ(m.surfaces.size(), 2u);
+  const std::vector<int> left = to_local(w.left_nodes, w);
+  std::vector<Tri> expected_left;
+  for (std::size_t i = 0; i < left.size(); i += 3) {
+    expected_left.push_back({left[i], left[i + 1], left[i + 2]});
+  }
+  EXPECT_EQ(unoriented(m.surfaces.at("left")), unoriented(expected_left));
+  for (const Tri& t : m.surfaces.at("left")) ASSERT_NEAR(unit_normal(m, t)[0], -1.0, 1e-12);
+  EXPECT_NEAR(area(m, m.surfaces.at("left")), 1.0, 1e-12);
+  EXPECT_NEAR(area(m, m.surfaces.at("rest")), 6.0, 1e-12);
+  EXPECT_EQ(all_named(m), unoriented(boundary_triangles(m)));
+  const Vec3 c{0.5, 1.0, 0.25};
+  for (const Tri& t : m.surfaces.at("rest")) {
+    ASSERT_GT(dot(area_normal(m, t), sub(centroid(m, t), c)), 0.0);
+  }
+
+  // All tets (no volume name) are the same; an unknown volume lists the available ones.
+  EXPECT_EQ(read_msh(file, "", "test").tets, m.tets);
+  const std::string msg = read_error(file, "ball");
+  EXPECT_NE(msg.find("no physical volume 'ball'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'solid'"), std::string::npos) << msg;
+}
+
+/// A two-tet .msh 4.1 file: nodes 1..5, triangle 1 on x = 0 (physical surface "side", written
+/// with its normal pointing into the body), tets 2 = {1,2,3,4} and 3 (physical volume "body").
+std::string two_tet_msh(const std::string& tet3) {
+  return "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+         "$PhysicalNames\n2\n2 1 \"side\"\n3 2 \"body\"\n$EndPhysicalNames\n"
+         "$Entities\n0 0 1 1\n"
+         "1 0 0 -1 0 1 1 1 1 0\n"
+         "1 0 0 -1 1 1 1 1 2 0\n"
+         "$EndEntities\n"
+         "$Nodes\n1 5 1 5\n3 1 0 5\n1\n2\n3\n4\n5\n"
+         "0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 0 -1\n$EndNodes\n"
+         "$Elements\n2 3 1 3\n"
+         "2 1 2 1\n1 1 3 4\n"
+         "3 1 4 2\n2 1 2 3 4\n" +
+         tet3 + "\n$EndElements\n";
+}
+
+void write_text(const std::string& file, const std::string& text) {
+  std::ofstream(file) << text;
+}
+
+TEST(ReadMsh, HandWrittenTwoTetFile) {
+  ScratchDir dir("two_tets");
+  write_text(dir.file("two_tets.msh"), two_tet_msh("3 1 3 2 5"));
+  const BodyMesh m = read_msh(dir.file("two_tets.msh"), "body", "test");
+  ASSERT_EQ(m.num_nodes(), 5);
+  ASSERT_EQ(m.num_tets(), 2);
+  EXPECT_EQ(m.tets, (std::vector<int>{0, 1, 2, 3, 0, 2, 1, 4}));
+  EXPECT_DOUBLE_EQ(tet_volume(m, 0), 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(tet_volume(m, 1), 1.0 / 6.0);
+  ASSERT_EQ(m.surfaces.count("side"), 1u);
+  ASSERT_EQ(m.surfaces.at("side").size(), 1u);
+  // Written inward as (1, 3, 4): re-oriented outward, normal -x.
+  EXPECT_EQ(m.surfaces.at("side")[0], (Tri{0, 3, 2}));
+  EXPECT_EQ(boundary_triangles(m).size(), 6u);
+  EXPECT_EQ(surface_nodes(m, "side", "test"), (std::vector<int>{0, 2, 3}));
+}
+
+TEST(ReadMsh, RelativeFileThroughBuildMesh) {
+  ScratchDir dir("relative");
+  write_text(dir.file("two_tets.msh"), two_tet_msh("3 1 3 2 5"));
+  Teuchos::ParameterList p("Mesh");
+  p.set("type", std::string("file"));
+  p.set("file", std::string("two_tets.msh"));
+  p.set("volume", std::string("body"));
+  EXPECT_EQ(build_mesh(p, dir.dir(), "input.xml: Bodies/b/Mesh").num_tets(), 2);
+}
+
+TEST(ReadMsh, InvertedTetIsRefusedWithElementIdAndFile) {
+  ScratchDir dir("inverted");
+  const std::string file = dir.file("inverted.msh");
+  write_text(file, two_tet_msh("3 1 2 3 5"));  // tet 3 with nodes 2 and 3 swapped
+  const std::string msg = read_error(file);
+  EXPECT_NE(msg.find("input.xml: Bodies/b/Mesh: '" + file + "': element 3 is inverted"),
+            std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("every tetrahedron must have positive volume"), std::string::npos) << msg;
+}
+
+TEST(ReadMsh, MissingFileIsNamed) {
+  const std::string msg = read_error("/tmp/emc_no_such_dir/missing.msh");
+  EXPECT_NE(msg.find("'/tmp/emc_no_such_dir/missing.msh' does not exist"), std::string::npos)
+      << msg;
+}
+
+TEST(ReadMsh, NonMshFileIsRefused) {
+  ScratchDir dir("geo");
+  write_text(dir.file("body.geo"), "Point(1) = {0, 0, 0};\n");
+  const std::string msg = read_error(dir.file("body.geo"));
+  EXPECT_NE(msg.find("is not a Gmsh .msh file"), std::string::npos) << msg;
+}
+
+TEST(ReadMsh, BrokenFileGivesGmshMessageAndLaterReadsStillWork) {
+  ScratchDir dir("broken");
+  write_text(dir.file("broken.msh"), "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 3\nx\n");
+  const std::string msg = read_error(dir.file("broken.msh"));
+  EXPECT_NE(msg.find("broken.msh': Gmsh cannot read the file: "), std::string::npos) << msg;
+  write_text(dir.file("good.msh"), two_tet_msh("3 1 3 2 5"));
+  EXPECT_EQ(read_msh(dir.file("good.msh"), "", "test").num_tets(), 2);
+}
+
+TEST(ReadMsh, FileWithoutTetsIsRefused) {
+  ScratchDir dir("no_tets");
+  std::string text = two_tet_msh("3 1 3 2 5");
+  text.replace(text.find("$Elements"), std::string::npos,
+               "$Elements\n1 1 1 1\n2 1 2 1\n1 1 3 4\n$EndElements\n");
+  write_text(dir.file("flat.msh"), text);
+  const std::string msg = read_error(dir.file("flat.msh"));
+  EXPECT_NE(msg.find("no 4-node tetrahedra"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace emc::mesh::test

@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""Plots an emcontact monitors.csv: energies, angular momentum L and generalized momentum J.
+
+Usage: plot_monitors.py DIR/monitors.csv [--out PNG] [--title T]
+
+Columns are found by header name (extra columns are ignored); the PNG defaults to the CSV path
+with a .png suffix. Panels: kinetic/elastic/potential/total vs time; Lx/Ly/Lz vs time; and
+Jx/Jy/Jz vs time if those columns are present.
+"""
+import argparse
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ENERGIES = ("kinetic", "elastic", "potential", "total")
+L_COLUMNS = ("Lx", "Ly", "Lz")
+J_COLUMNS = ("Jx", "Jy", "Jz")
+
+
+def read_csv(path):
+    """Returns {column name: float array}; numeric columns only, by header name."""
+    with open(path, newline="") as f:
+        header = f.readline().strip().split(",")
+        if not header or header == [""]:
+            sys.exit(f"{path}: empty file")
+        data = np.genfromtxt(f, delimiter=",", dtype=float, ndmin=2)
+    if data.size == 0:
+        data = np.zeros((0, len(header)))
+    if data.shape[1] != len(header):
+        sys.exit(f"{path}: {data.shape[1]} columns for a header of {len(header)}")
+    return {name: data[:, i] for i, name in enumerate(header)}
+
+
+def plot_group(ax, cols, names, ylabel):
+    """Draws every column of `names` present in `cols` against time on `ax`."""
+    t = cols["time"]
+    for name in names:
+        if name in cols:
+            style = {"color": "k", "linewidth": 2} if name == "total" else {}
+            ax.plot(t, cols[name], label=name, **style)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize="small")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("csv", help="monitors.csv written by emcontact")
+    p.add_argument("--out", help="PNG to write (default: the CSV path with .png)")
+    p.add_argument("--title", help="figure title (default: the CSV path)")
+    args = p.parse_args()
+
+    cols = read_csv(args.csv)
+    missing = [c for c in ("time",) + ENERGIES + L_COLUMNS if c not in cols]
+    if missing:
+        sys.exit(f"{args.csv}: missing columns {', '.join(missing)}")
+    groups = [(ENERGIES, "energy"), (L_COLUMNS, "L")]
+    if any(c in cols for c in J_COLUMNS):
+        groups.append((J_COLUMNS, "J"))
+
+    fig, axes = plt.subplots(len(groups), 1, sharex=True, figsize=(9, 3.2 * len(groups)))
+    for ax, (names, ylabel) in zip(axes, groups):
+        plot_group(ax, cols, names, ylabel)
+    axes[-1].set_xlabel("time")
+    fig.suptitle(args.title if args.title else args.csv)
+    fig.tight_layout()
+    out = args.out if args.out else os.path.splitext(args.csv)[0] + ".png"
+    fig.savefig(out, dpi=110)
+    print(out)
+
+
+if __name__ == "__main__":
+    main()
