@@ -15,8 +15,7 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_body_parameters() {
   mat.set("density", 1000.0, "Mass density in the reference configuration [kg/m^3].",
           positive_double());
   auto& init = pl->sublist("Initial", false, "Initial rigid motion of the body.");
-  init.set("velocity", vec3(0, 0, 0), "Initial velocity of the centre of mass [m/s].",
-           vector3());
+  init.set("velocity", vec3(0, 0, 0), "Initial velocity of the centre of mass [m/s].", vector3());
   init.set("angular velocity", vec3(0, 0, 0),
            "Initial angular velocity about the centre of mass [rad/s].", vector3());
   return pl;

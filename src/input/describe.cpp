@@ -1,6 +1,5 @@
 // Describing schema entries and values in words, for error messages and the documentation.
 #include <Teuchos_StandardParameterEntryValidators.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -125,7 +124,8 @@ std::string constraint(const ParameterEntry& valid) {
 /// The valid strings of a string validator, or null for any string.
 Teuchos::RCP<const Array<std::string>> valid_strings(const ParameterEntry& valid) {
   const auto v = valid.validator();
-  if (v.is_null() || number_range(v.get()) || array_element_validator(v.get())) return Teuchos::null;
+  if (v.is_null() || number_range(v.get()) || array_element_validator(v.get()))
+    return Teuchos::null;
   auto s = v->validStringValues();
   return (s.is_null() || s->empty()) ? Teuchos::null : s;
 }
@@ -167,7 +167,9 @@ std::string format_double(double x) {
   return mantissa + "e" + (negative ? "-" : "") + exponent;
 }
 
-std::string type_name(const any& value) { return value.typeName(); }
+std::string type_name(const any& value) {
+  return value.typeName();
+}
 
 std::string format_value(const any& value, bool quote_strings) {
   if (value.type() == typeid(double)) return format_double(any_cast<double>(value));
@@ -204,14 +206,17 @@ std::string allowed_markdown(const ParameterEntry& valid) {
   if (auto s = valid_strings(valid)) return join_choices(*s, true);
   if (type_name(valid.getAny(false)) == "bool") return "`true`, `false`";
   const std::string c = constraint(valid);
-  if (auto n = required_size(valid)) return std::to_string(*n) + " numbers" + (c.empty() ? "" : ", " + c);
-  if (c.empty()) return valid.validator().is_null() ? "any" : "any " + type_name(valid.getAny(false));
+  if (auto n = required_size(valid))
+    return std::to_string(*n) + " numbers" + (c.empty() ? "" : ", " + c);
+  if (c.empty())
+    return valid.validator().is_null() ? "any" : "any " + type_name(valid.getAny(false));
   return c;
 }
 
 std::string entry_names(const ParameterList& valid) {
   std::string s;
-  for (auto it = valid.begin(); it != valid.end(); ++it) s += (s.empty() ? "" : ", ") + valid.name(it);
+  for (auto it = valid.begin(); it != valid.end(); ++it)
+    s += (s.empty() ? "" : ", ") + valid.name(it);
   return s;
 }
 

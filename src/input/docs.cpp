@@ -89,9 +89,6 @@ std::string example_xml() {
         <Parameter name="young" type="double" value="1e5"/>
         <Parameter name="poisson" type="double" value="0.3"/>
       </ParameterList>
-      <ParameterList name="Initial">
-        <Parameter name="angular velocity" type="Array(double)" value="{0, 0, 1}"/>
-      </ParameterList>
     </ParameterList>
   </ParameterList>
   <ParameterList name="Loads">
@@ -140,8 +137,8 @@ std::string schema_markdown() {
     }
   }
   os << "## Example\n\n"
-     << "A clamped block sagging under gravity (every parameter not given takes its "
-        "default):\n\n```xml\n"
+     << "A block clamped at its `xmin` face, sagging under gravity (every parameter not "
+        "given takes its default):\n\n```xml\n"
      << detail::example_xml() << "```\n";
   return os.str();
 }

@@ -30,8 +30,9 @@ void check_sections(const ParameterList& params, const std::string& file) {
   for (auto it = params.begin(); it != params.end(); ++it) {
     const std::string& name = params.name(it);
     if (!schema->isSublist(name))
-      detail::fail(file, name, {"unknown section" + detail::suggestion(name, *schema),
-                                detail::entry_names(*schema)});
+      detail::fail(
+          file, name,
+          {"unknown section" + detail::suggestion(name, *schema), detail::entry_names(*schema)});
     if (!params.entry(it).isList())
       detail::fail(file, name, {"must be a sublist, not a parameter", "a sublist"});
   }
@@ -60,8 +61,8 @@ void check_end_time(const ParameterList& params, const std::string& file) {
   const double dt = time.get<double>("dt"), end = time.get<double>("end");
   if (end < dt)
     detail::fail(file, "Time/end",
-                 {"end = " + detail::format_double(end) + " is smaller than dt = " +
-                      detail::format_double(dt),
+                 {"end = " + detail::format_double(end) +
+                      " is smaller than dt = " + detail::format_double(dt),
                   "a double >= dt"});
 }
 

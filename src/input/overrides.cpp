@@ -116,7 +116,8 @@ Target section_target(ParameterList& params, const std::vector<std::string>& par
                       std::size_t& next, const std::string& file, const std::string& text,
                       Teuchos::RCP<const ParameterList>& keep_alive) {
   const auto all = sections();
-  auto s = std::find_if(all.begin(), all.end(), [&](const Section& x) { return x.name == parts[0]; });
+  auto s =
+      std::find_if(all.begin(), all.end(), [&](const Section& x) { return x.name == parts[0]; });
   if (s == all.end()) {
     std::string names;
     for (const auto& x : all) names += (names.empty() ? "" : ", ") + x.name;
@@ -132,19 +133,20 @@ Target section_target(ParameterList& params, const std::vector<std::string>& par
     refuse(file, text,
            {parts.size() < 3 ? "no " + what + " named"
                              : "\"" + parts[1] + "\" is not a " + what + " of the input",
-            s->name + "/" + s->placeholder + "/... with " + s->placeholder + " one of: " +
-                (names.empty() ? "(none in the input)" : names)});
+            s->name + "/" + s->placeholder + "/... with " + s->placeholder +
+                " one of: " + (names.empty() ? "(none in the input)" : names)});
   }
   next = 2;
   return {&user->sublist(parts[1]), s->schema.get()};
 }
 
 /// Descends into the sublist `name` of the schema (until a pass-through list) and of the input.
-Target descend(Target t, const std::string& name, const std::string& file, const std::string& text) {
+Target descend(Target t, const std::string& name, const std::string& file,
+               const std::string& text) {
   if (t.valid) {
     if (!t.valid->isSublist(name))
-      refuse(file, text, {"no sublist \"" + name + "\"" + suggestion(name, *t.valid),
-                          entry_names(*t.valid)});
+      refuse(file, text,
+             {"no sublist \"" + name + "\"" + suggestion(name, *t.valid), entry_names(*t.valid)});
     t.valid = &t.valid->sublist(name);
     if (is_pass_through(*t.valid)) t.valid = nullptr;
   }
@@ -164,8 +166,9 @@ void set_leaf(const Target& t, const std::string& name, const std::string& value
       try {
         v = parse_value(value_text, old);
       } catch (const std::invalid_argument&) {
-        refuse(file, text, {"\"" + value_text + "\" is not a valid " + type_name(old),
-                            "a value of type " + type_name(old) + " (as the entry in the input)"});
+        refuse(file, text,
+               {"\"" + value_text + "\" is not a valid " + type_name(old),
+                "a value of type " + type_name(old) + " (as the entry in the input)"});
       }
     }
     Teuchos::ParameterEntry e;
@@ -174,18 +177,21 @@ void set_leaf(const Target& t, const std::string& name, const std::string& value
     return;
   }
   if (!t.valid->isParameter(name))
-    refuse(file, text, {"unknown parameter \"" + name + "\"" + suggestion(name, *t.valid),
-                        entry_names(*t.valid)});
+    refuse(
+        file, text,
+        {"unknown parameter \"" + name + "\"" + suggestion(name, *t.valid), entry_names(*t.valid)});
   const Teuchos::ParameterEntry& valid = t.valid->getEntry(name);
   if (valid.isList())
-    refuse(file, text, {"\"" + name + "\" is a sublist", "a parameter inside it: " +
-                                                            entry_names(t.valid->sublist(name))});
+    refuse(file, text,
+           {"\"" + name + "\" is a sublist",
+            "a parameter inside it: " + entry_names(t.valid->sublist(name))});
   Teuchos::ParameterEntry e;
   try {
     e.setAnyValue(parse_value(value_text, valid.getAny(false)));
   } catch (const std::invalid_argument&) {
-    refuse(file, text, {"\"" + value_text + "\" is not a valid " + type_name(valid.getAny(false)),
-                        allowed_text(valid)});
+    refuse(file, text,
+           {"\"" + value_text + "\" is not a valid " + type_name(valid.getAny(false)),
+            allowed_text(valid)});
   }
   if (auto p = check_entry(e, valid)) refuse(file, text, *p);
   t.user->setEntry(name, e);

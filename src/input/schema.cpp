@@ -18,7 +18,8 @@ Teuchos::RCP<const Teuchos::ParameterList> body_template() {
   mesh = *emc::mesh::valid_mesh_parameters();
   mesh.setName("Mesh");
   const auto fem = emc::fem::valid_body_parameters();
-  for (auto it = fem->begin(); it != fem->end(); ++it) body->setEntry(fem->name(it), fem->entry(it));
+  for (auto it = fem->begin(); it != fem->end(); ++it)
+    body->setEntry(fem->name(it), fem->entry(it));
   return body;
 }
 

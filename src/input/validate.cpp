@@ -49,8 +49,8 @@ std::optional<Problem> check_entry(const ParameterEntry& user, const ParameterEn
   const auto validator = valid.validator();
   const bool strict_type = validator.is_null() || !accepts_several_types(validator.get());
   if (strict_type && u.type() != v.type())
-    return Problem{"has type " + type_name(u) + " (value " + format_value(u) +
-                       "), expected type " + type_name(v),
+    return Problem{"has type " + type_name(u) + " (value " + format_value(u) + "), expected type " +
+                       type_name(v),
                    allowed_text(valid)};
   if (auto n = required_size(valid)) {
     const auto size = Teuchos::any_cast<Teuchos::Array<double>>(u).size();
@@ -81,7 +81,8 @@ void check_list(const ParameterList& user, const ParameterList& valid, const std
     if (schema.isList()) {
       const ParameterList& sub = valid.sublist(name);
       if (!entry.isList())
-        fail(file, p, {"must be a sublist, not a parameter", "a sublist with: " + entry_names(sub)});
+        fail(file, p,
+             {"must be a sublist, not a parameter", "a sublist with: " + entry_names(sub)});
       if (!is_pass_through(sub)) check_list(user.sublist(name), sub, p, file);
       continue;
     }

@@ -2,7 +2,6 @@
 #include <Teuchos_FileInputSource.hpp>
 #include <Teuchos_XMLObject.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
-
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -77,16 +76,16 @@ void scan_list(const Teuchos::XMLObject& list, const std::string& path, const st
     if (child.getTag() != "Parameter" && child.getTag() != "ParameterList") continue;
     const std::string name = name_of(child, file, path);
     const std::string p = path.empty() ? name : path + "/" + name;
-    if (!seen.insert(name).second)
-      fail(file, p, {"given twice", "each name once per list"});
+    if (!seen.insert(name).second) fail(file, p, {"given twice", "each name once per list"});
     if (child.getTag() == "ParameterList") {
       scan_list(child, p, file);
       continue;
     }
     const std::string type = child.hasAttribute("type") ? child.getAttribute("type") : "";
     if (type.empty() || !child.hasAttribute("value"))
-      fail(file, p, {"needs type and value attributes",
-                     "<Parameter name=\"" + name + "\" type=\"double\" value=\"1\"/>"});
+      fail(file, p,
+           {"needs type and value attributes",
+            "<Parameter name=\"" + name + "\" type=\"double\" value=\"1\"/>"});
     const std::string& value = child.getAttribute("value");
     if (!value_is_valid(type, value))
       fail(file, p, {"value \"" + value + "\" is not a valid " + type, value_hint(type)});

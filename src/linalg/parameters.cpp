@@ -13,10 +13,9 @@ void set_newton(Teuchos::ParameterList& pl) {
          "Newton converges when the residual norm falls below this fraction of the "
          "step's initial residual norm (or below the absolute tolerance).",
          positive_double());
-  pl.set("absolute tolerance", 0.0, "Absolute tolerance of the Newton residual norm (0 = not used).",
-         double_at_least(0.0));
-  pl.set("max iterations", 25,
-         "Newton iterations per step before the step counts as failed.",
+  pl.set("absolute tolerance", 0.0,
+         "Absolute tolerance of the Newton residual norm (0 = not used).", double_at_least(0.0));
+  pl.set("max iterations", 25, "Newton iterations per step before the step counts as failed.",
          int_at_least(1));
 }
 
@@ -28,8 +27,8 @@ void set_linear(Teuchos::ParameterList& pl) {
   pl.set("preconditioner", std::string("ilu"),
          "Preconditioner of the iterative solvers (ignored by klu2).",
          string_choice("preconditioner", {"ilu", "schwarz", "muelu", "none"},
-                       {"Ifpack2 ILU", "Ifpack2 additive Schwarz",
-                        "MueLu algebraic multigrid", "no preconditioner"}));
+                       {"Ifpack2 ILU", "Ifpack2 additive Schwarz", "MueLu algebraic multigrid",
+                        "no preconditioner"}));
   pl.set("tolerance", 1e-10, "Relative residual tolerance of the iterative solvers.",
          positive_double());
   pl.set("max iterations", 1000, "Iterations of the iterative solvers.", int_at_least(1));

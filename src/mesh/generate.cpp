@@ -47,13 +47,24 @@ std::string str(double v) {
 
 // ---- parameters -------------------------------------------------------------------------
 
-/// The text of a Teuchos exception without its file/line/"Throw number" preamble.
+/// The text of a Teuchos exception without its "file:line:", "Throw number = n" and "Throw
+/// test that evaluated to true" paragraphs.
 std::string teuchos_message(const std::string& what) {
-  const std::size_t test = what.find("Throw test that evaluated to true");
-  const std::size_t body = test == std::string::npos ? test : what.find("\n\n", test);
-  std::string msg = body == std::string::npos ? what : what.substr(body + 2);
-  while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
-  return msg;
+  std::string msg;
+  std::size_t begin = 0;
+  while (begin < what.size()) {
+    std::size_t end = what.find("\n\n", begin);
+    if (end == std::string::npos) end = what.size();
+    const std::string para = what.substr(begin, end - begin);
+    const bool noise = para.rfind("Throw number", 0) == 0 || para.rfind("Throw test", 0) == 0 ||
+                       (para.find('\n') == std::string::npos && !para.empty() &&
+                        para.back() == ':' && para.find("pp:") != std::string::npos);
+    if (!noise && para.find_first_not_of(" \n") != std::string::npos) {
+      msg += (msg.empty() ? "" : "\n\n") + para;
+    }
+    begin = end + 2;
+  }
+  return msg.empty() ? what : msg;
 }
 
 /// A copy of `in` validated against valid_mesh_parameters(), defaults filled in.

@@ -10,14 +10,13 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Time"));
   pl->set("dt", 0.01, "Nominal time step [s]; the step is halved on failure (see max step cuts).",
           positive_double());
-  pl->set("end", 1.0, "End time [s] (the run starts at t = 0); must be >= dt.",
-          positive_double());
+  pl->set("end", 1.0, "End time [s] (the run starts at t = 0); must be >= dt.", positive_double());
   pl->set("integrator", std::string("energy-momentum"), "Time integrator.",
           string_choice("integrator", {"energy-momentum", "midpoint"},
                         {"energy-momentum conserving scheme (conserves energy and momenta)",
                          "implicit midpoint rule"}));
-  pl->set("max step cuts", 6,
-          "How many times a failed step may halve dt before the run fails.", int_range(0, 20));
+  pl->set("max step cuts", 6, "How many times a failed step may halve dt before the run fails.",
+          int_range(0, 20));
   pl->set("grow after", 4,
           "Successful sub-steps after which dt doubles back toward the nominal dt.",
           int_at_least(1));

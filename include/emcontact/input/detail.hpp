@@ -1,7 +1,6 @@
 #pragma once
 // Internals of the input module, declared for its sources, the docs generator and unit tests.
 #include <Teuchos_ParameterList.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>

@@ -3,7 +3,6 @@
 // Teuchos-only emc_params library can use them). Teuchos number ranges are inclusive: a strict
 // bound is the neighbouring double (the input module prints it back as "> 0", "< 0.5").
 #include <Teuchos_StandardParameterEntryValidators.hpp>
-
 #include <cmath>
 #include <limits>
 #include <string>
@@ -28,7 +27,9 @@ inline ValidatorPtr double_above(double lo) {
 }
 
 /// A double > 0.
-inline ValidatorPtr positive_double() { return double_above(0.0); }
+inline ValidatorPtr positive_double() {
+  return double_above(0.0);
+}
 
 /// A double >= lo.
 inline ValidatorPtr double_at_least(double lo) {
@@ -60,7 +61,9 @@ inline ValidatorPtr string_choice(const std::string& name, const std::vector<std
 }
 
 /// Any string (the meaning is checked later, e.g. a body or surface name).
-inline ValidatorPtr any_string() { return Teuchos::rcp(new Teuchos::StringValidator()); }
+inline ValidatorPtr any_string() {
+  return Teuchos::rcp(new Teuchos::StringValidator());
+}
 
 /// An Array(double) of finite numbers; the input module also requires exactly 3 components
 /// for every Array(double) parameter whose default has 3.

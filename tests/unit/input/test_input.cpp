@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
-
-#include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
@@ -36,23 +35,29 @@ struct Xml {
   std::string str() const {
     return R"(<ParameterList name="test">
   <ParameterList name="Time">
-      )" + time + R"(
+      )" + time +
+           R"(
   </ParameterList>
   <ParameterList name="Bodies">
     <ParameterList name="ball">
       <ParameterList name="Mesh">
-        )" + mesh + R"(
+        )" +
+           mesh + R"(
       </ParameterList>
       <ParameterList name="Material">
-        )" + material + R"(
+        )" +
+           material + R"(
       </ParameterList>
       <ParameterList name="Initial">
-        )" + initial + R"(
+        )" +
+           initial + R"(
       </ParameterList>
     </ParameterList>
-    )" + bodies_extra + R"(
+    )" + bodies_extra +
+           R"(
   </ParameterList>
-  )" + sections + R"(
+  )" + sections +
+           R"(
 </ParameterList>
 )";
   }
@@ -96,10 +101,13 @@ class InputTest : public ::testing::Test {
 void expect_message(const std::string& message, const std::vector<std::string>& parts) {
   ASSERT_FALSE(message.empty()) << "no InputError";
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-  for (const auto& p : parts) EXPECT_NE(message.find(p), std::string::npos) << p << " | " << message;
+  for (const auto& p : parts)
+    EXPECT_NE(message.find(p), std::string::npos) << p << " | " << message;
 }
 
-Array<double> vec(double x, double y, double z) { return Teuchos::tuple(x, y, z); }
+Array<double> vec(double x, double y, double z) {
+  return Teuchos::tuple(x, y, z);
+}
 
 // ---------------------------------------------------------------- defaults
 
@@ -133,7 +141,8 @@ TEST_F(InputTest, DefaultsAreFilled) {
   EXPECT_EQ(linear.get<int>("max iterations"), 1000);
   EXPECT_EQ(linear.get<bool>("reuse preconditioner"), true);
   EXPECT_EQ(linear.get<double>("residual check factor"), 100.0);
-  EXPECT_TRUE(linear.isSublist("Belos") && linear.isSublist("Ifpack2") && linear.isSublist("MueLu"));
+  EXPECT_TRUE(linear.isSublist("Belos") && linear.isSublist("Ifpack2") &&
+              linear.isSublist("MueLu"));
   const auto& output = p.sublist("Output");
   EXPECT_EQ(output.get<std::string>("directory"), "output");
   EXPECT_EQ(output.get<int>("every"), 10);
@@ -198,8 +207,8 @@ TEST_F(InputTest, IntOutOfRangeRefused) {
 TEST_F(InputTest, ArrayOfTwoRefused) {
   Xml x;
   x.initial = R"X(<Parameter name="velocity" type="Array(double)" value="{1, 2}"/>)X";
-  expect_message(error(x), {"parameter \"Bodies/ball/Initial/velocity\"", "has 2 components",
-                            "3 numbers"});
+  expect_message(error(x),
+                 {"parameter \"Bodies/ball/Initial/velocity\"", "has 2 components", "3 numbers"});
 }
 
 TEST_F(InputTest, MeshArrayOfTwoRefused) {
@@ -297,6 +306,21 @@ TEST_F(InputTest, OverridesOfEveryType) {
   EXPECT_EQ(p.sublist("Solver").sublist("Linear").get<double>("tolerance"), 1e-8);
 }
 
+TEST_F(InputTest, OverrideOfMeshParameter) {
+  const auto in = read(Xml{}, {"Bodies/ball/Mesh/size=0.02", "Bodies/ball/Mesh/type=file"});
+  const auto& mesh = in.params->sublist("Bodies").sublist("ball").sublist("Mesh");
+  EXPECT_EQ(mesh.get<double>("size"), 0.02);
+  EXPECT_EQ(mesh.get<std::string>("type"), "file");
+  expect_message(error(Xml{}, {"Bodies/ball/Mesh/type=sphere"}),
+                 {"override \"Bodies/ball/Mesh/type=sphere\"", "\"box\", \"cylinder\""});
+}
+
+TEST_F(InputTest, BodyGivenAsParameterRefused) {
+  Xml x;
+  x.bodies_extra = R"(<Parameter name="stone" type="int" value="1"/>)";
+  expect_message(error(x), {"parameter \"Bodies/stone\"", "must be a sublist (one per body)"});
+}
+
 TEST_F(InputTest, OverrideReplacesWrongTypeInFile) {
   Xml x;
   x.time = R"(<Parameter name="dt" type="string" value="abc"/>)";
@@ -305,8 +329,8 @@ TEST_F(InputTest, OverrideReplacesWrongTypeInFile) {
 }
 
 TEST_F(InputTest, OverrideOfUnknownPathRefused) {
-  expect_message(error(Xml{}, {"Time/dtt=1"}),
-                 {"override \"Time/dtt=1\"", "unknown parameter", "did you mean \"dt\"", "dt, end"});
+  expect_message(error(Xml{}, {"Time/dtt=1"}), {"override \"Time/dtt=1\"", "unknown parameter",
+                                                "did you mean \"dt\"", "dt, end"});
   expect_message(error(Xml{}, {"Timing/dt=1"}), {"override \"Timing/dt=1\"", "unknown section"});
   expect_message(error(Xml{}, {"Bodies/bal/Material/young=1"}),
                  {"override \"Bodies/bal/Material/young=1\"", "\"bal\" is not a body", "ball"});
@@ -397,11 +421,34 @@ TEST_F(InputTest, DocumentedExampleIsValid) {
             "block");
 }
 
+TEST(InputFiles, CommittedInputsAreValid) {
+  const std::string src = EMC_SOURCE_DIR;
+  for (const char* f :
+       {"/inputs/tumbling_box.xml", "/inputs/falling_box.xml", "/tests/bad_input/good_box.xml"})
+    EXPECT_NO_THROW(read_input(src + f, {})) << f;
+  const auto tumbling = read_input(src + "/inputs/tumbling_box.xml", {});
+  const auto& box = tumbling.params->sublist("Bodies").sublist("box");
+  EXPECT_EQ(box.sublist("Initial").get<Array<double>>("angular velocity"), vec(2, 1, 4));
+  EXPECT_EQ(tumbling.params->sublist("Time").get<double>("end"), 5.0);
+  const auto falling = read_input(src + "/inputs/falling_box.xml", {});
+  EXPECT_EQ(falling.params->sublist("Loads").get<Array<double>>("gravity"), vec(0, 0, -9.81));
+  EXPECT_EQ(falling.dir, src + "/inputs");
+}
+
+TEST(InputFiles, BadInputsAreRefusedByTheInputModule) {
+  const std::string dir = std::string(EMC_SOURCE_DIR) + "/tests/bad_input/";
+  for (const char* f : {"bad_unknown_parameter.xml", "bad_wrong_type.xml", "bad_negative_dt.xml"})
+    EXPECT_THROW(read_input(dir + f, {}), emc::InputError) << f;
+  for (const char* f : {"bad_missing_mesh.xml", "bad_inverted_element.xml"})  // mesh errors
+    EXPECT_NO_THROW(read_input(dir + f, {})) << f;
+}
+
 TEST(InputDocs, TablesListEveryParameter) {
   const std::string md = emc::input::schema_markdown();
   for (const char* row :
        {"| `dt` | double | `0.01` | > 0 |", "| `integrator` | string | `energy-momentum` |",
-        "| `max step cuts` | int | `6` | from 0 to 20 |", "| `poisson` | double | `0.3` | >= 0 and < 0.5 |",
+        "| `max step cuts` | int | `6` | from 0 to 20 |",
+        "| `poisson` | double | `0.3` | >= 0 and < 0.5 |",
         "| `velocity` | Array(double) | `{0, 0, 0}` | 3 numbers |", "| `Belos` | sublist |",
         "| `progress` | bool | `true` | `true`, `false` |", "### `Bodies/<body>/Mesh`",
         "### `Dirichlet/<condition>`", "### `Solver/Linear`", "```xml"})

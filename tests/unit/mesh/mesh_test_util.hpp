@@ -64,10 +64,16 @@ inline Vec3 body_centroid(const BodyMesh& m) {
   return {c[0] / v, c[1] / v, c[2] / v};
 }
 
+/// Sum of the tet volumes (Neumaier summation: exact to rounding for 1e5+ tets).
 inline double total_volume(const BodyMesh& m) {
-  double v = 0.0;
-  for (int e = 0; e < m.num_tets(); ++e) v += tet_volume(m, e);
-  return v;
+  double sum = 0.0, correction = 0.0;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const double v = tet_volume(m, e);
+    const double t = sum + v;
+    correction += std::abs(sum) >= std::abs(v) ? (sum - t) + v : (v - t) + sum;
+    sum = t;
+  }
+  return sum + correction;
 }
 
 inline double min_volume(const BodyMesh& m) {

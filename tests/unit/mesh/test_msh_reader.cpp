@@ -35,7 +35,8 @@ Written write_box_msh(const std::string& file) {
   for (const auto& f : faces) {
     double x0, y0, z0, x1, y1, z1;
     gmsh::model::getBoundingBox(2, f.second, x0, y0, z0, x1, y1, z1);
-    (x1 < 1e-9 ? left : rest).push_back(f.second);
+    (x1 < 1e-3 ? left : rest)  // OCC boxes are slightly padded
+       .push_back(f.second);
   }
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 7), "solid");
   gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, left, 1), "left");
@@ -43,10 +44,11 @@ Written write_box_msh(const std::string& file) {
   gmsh::option::setNumber("Mesh.MeshSizeMax", 0.3);
   gmsh::model::mesh::generate(3);
 
+  // Fresh output vectors for every call: Gmsh 4.8 takes non-empty ones as preallocated.
   Written w;
-  std::vector<std::size_t> tags;
-  gmsh::model::mesh::getElementsByType(4, tags, w.tet_nodes);
-  gmsh::model::mesh::getElementsByType(2, tags, w.left_nodes, left.at(0));
+  std::vector<std::size_t> tet_tags, tri_tags, tags;
+  gmsh::model::mesh::getElementsByType(4, tet_tags, w.tet_nodes);
+  gmsh::model::mesh::getElementsByType(2, tri_tags, w.left_nodes, left.at(0));
   std::vector<double> xyz, params;
   gmsh::model::mesh::getNodes(tags, xyz, params, -1, -1, false, false);
   for (std::size_t i = 0; i < tags.size(); ++i) {
