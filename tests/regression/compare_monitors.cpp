@@ -1,6 +1,8 @@
 // compare_monitors A.csv B.csv RTOL ATOL: every physical column of every row must agree,
-// |a - b| <= ATOL + RTOL * max_rows |a| (the column's largest magnitude, so that components
-// crossing zero are judged against their own scale). Prints the worst mismatch; exit 1 if any.
+// |a - b| <= ATOL + RTOL * max_rows |a| (the column's largest magnitude, or the vector's for
+// the components of L, J and the centre of mass, so that values crossing zero are judged
+// against their own scale). Prints the worst mismatch; exit 1 if any.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +42,13 @@ int main(int argc, char** argv) {
     for (const auto& r : a) {
       const auto v = physical(r);
       for (std::size_t c = 0; c < nc; ++c) scale[c] = std::max(scale[c], std::fabs(v[c]));
+    }
+    // the total energy is judged against its parts (it may start at zero)
+    scale[4] = std::max({scale[1], scale[2], scale[3], scale[4]});
+    // the components of a vector (L, J, centre of mass) share the vector's scale
+    for (std::size_t first : {5, 8, 11}) {
+      const double m = std::max({scale[first], scale[first + 1], scale[first + 2]});
+      for (std::size_t c = first; c < first + 3; ++c) scale[c] = m;
     }
     double worst = 0;
     std::size_t wr = 0, wc = 0;
