@@ -315,9 +315,11 @@ TEST(GenerateSphericalShell, VolumeAreasAndNormals) {
             << (total_volume(m) - v) / v << "\n";
 }
 
-/// Tet counts of the spherical shell (inner 0.2, outer 0.4) for a few sizes, with timings.
-void print_shell_counts(const std::vector<double>& sizes) {
-  for (double size : sizes) {
+/// Tet counts of the spherical shell (inner 0.2, outer 0.4) for a few sizes, with timings;
+/// checks each count within `tolerance` of the expected one (Gmsh 4.8, Debian 12).
+void check_shell_counts(const std::vector<std::pair<double, int>>& size_and_count,
+                        double tolerance) {
+  for (const auto& [size, expected] : size_and_count) {
     Teuchos::ParameterList p = params("spherical shell", size);
     p.set("inner radius", 0.2);
     p.set("outer radius", 0.4);
@@ -331,13 +333,19 @@ void print_shell_counts(const std::vector<double>& sizes) {
               << m.num_nodes() << " nodes, " << nb << " boundary triangles; build_mesh "
               << t_mesh << " s, boundary_triangles " << t_boundary << " s\n";
     EXPECT_GT(min_volume(m), 0.0);
+    EXPECT_NEAR(m.num_tets(), expected, tolerance * expected) << "size " << size;
   }
 }
 
-TEST(GenerateSphericalShell, TetCountsForSizes) { print_shell_counts({0.1, 0.05, 0.025}); }
+// The ball of the examples: size 0.0524 gives ~8200 tets (0.0523 jumps to ~9200, when the
+// circles get one more segment); 0.026 gives ~65k.
+TEST(GenerateSphericalShell, TetCountsForSizes) {
+  check_shell_counts({{0.1, 1519}, {0.0524, 8154}, {0.026, 65433}}, 0.2);
+}
 
-// The ~500k-tet shell: run with --gtest_also_run_disabled_tests (about a minute of CPU).
-TEST(GenerateSphericalShell, DISABLED_LargeShell) { print_shell_counts({0.0125}); }
+// The ~500k-tet shell (about 17 s, mostly Gmsh's Delaunay): run with
+// --gtest_also_run_disabled_tests.
+TEST(GenerateSphericalShell, DISABLED_LargeShell) { check_shell_counts({{0.0129, 504826}}, 0.2); }
 
 }  // namespace
 }  // namespace emc::mesh::test

@@ -65,7 +65,7 @@ TEST(Monitors, FormatRowUsesPercent17g) {
   r.kinetic = -0.0;
   r.L = {1.0 / 3.0, 1e-300, 2.0};
   EXPECT_EQ(format_row(r),
-            "3,0.10000000000000001,-0,0,0,0,0.33333333333333331,1e-300,2,0,0,0,0,0,0,0");
+            "3,0.10000000000000001,-0,0,0,0,0.33333333333333331,1e-300,2,0,0,0,0,0,0,0,0,0,0");
   // Same text as printf("%.17g") for awkward values.
   for (double v : {0.1, 1e-300, -0.0, 1.0 / 3.0, 5e-324, 1.7976931348623157e308, 1e16, 123.5,
                    -2.5e-7, 1e21, 0.0001, std::numeric_limits<double>::infinity()}) {
