@@ -5,7 +5,6 @@
 #include <gmsh.h>
 
 #include <Teuchos_Array.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -35,9 +34,15 @@ struct Shape {
   double volume = 0.0;
 };
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
 
 std::string str(double v) {
   std::ostringstream s;
@@ -130,9 +135,10 @@ Shape box_shape(const Teuchos::ParameterList& p, const std::string& where) {
   s.volume = 1.0;
   for (int d = 0; d < 3; ++d) {
     if (!(hi[d] > lo[d])) {
-      throw InputError(where + ": parameter 'upper corner' must exceed 'lower corner' in every "
-                       "component; " + std::string(1, axes[d]) + ": " + str(hi[d]) +
-                       " <= " + str(lo[d]));
+      throw InputError(where +
+                       ": parameter 'upper corner' must exceed 'lower corner' in every "
+                       "component; " +
+                       std::string(1, axes[d]) + ": " + str(hi[d]) + " <= " + str(lo[d]));
     }
     s.volume *= hi[d] - lo[d];
   }
@@ -143,8 +149,12 @@ Shape box_shape(const Teuchos::ParameterList& p, const std::string& where) {
   s.surface_of = [lo, hi, tol](const std::array<Vec3, 3>& t) -> std::string {
     static const char* names[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
     for (int d = 0; d < 3; ++d) {
-      if (all_near(t, [&](const Vec3& x) { return x[d] - lo[d]; }, tol)) return names[d][0];
-      if (all_near(t, [&](const Vec3& x) { return x[d] - hi[d]; }, tol)) return names[d][1];
+      if (all_near(
+              t, [&](const Vec3& x) { return x[d] - lo[d]; }, tol))
+        return names[d][0];
+      if (all_near(
+              t, [&](const Vec3& x) { return x[d] - hi[d]; }, tol))
+        return names[d][1];
     }
     return "";
   };
@@ -168,8 +178,8 @@ Shape cylinder_shape(const Teuchos::ParameterList& p, const std::string& where, 
   Shape s;
   s.volume = M_PI * (ro * ro - ri * ri) * h;
   s.add_to_gmsh = [c, a, h, ri, ro, hollow] {
-    const int outer = gmsh::model::occ::addCylinder(c[0], c[1], c[2], h * a[0], h * a[1],
-                                                    h * a[2], ro);
+    const int outer =
+        gmsh::model::occ::addCylinder(c[0], c[1], c[2], h * a[0], h * a[1], h * a[2], ro);
     if (!hollow) return;
     // The hole overshoots both ends so that the cut has no coincident faces.
     const Vec3 b{c[0] - 0.1 * h * a[0], c[1] - 0.1 * h * a[1], c[2] - 0.1 * h * a[2]};
@@ -183,7 +193,9 @@ Shape cylinder_shape(const Teuchos::ParameterList& p, const std::string& where, 
   s.surface_of = [c, a, h, ri, ro, hollow, tol](const std::array<Vec3, 3>& t) -> std::string {
     const auto height = [&](const Vec3& x) { return dot(sub(x, c), a); };
     if (all_near(t, height, tol)) return "bottom";
-    if (all_near(t, [&](const Vec3& x) { return height(x) - h; }, tol)) return "top";
+    if (all_near(
+            t, [&](const Vec3& x) { return height(x) - h; }, tol))
+      return "top";
     double r = 0.0;  // mean distance of the nodes from the axis
     for (const Vec3& x : t) {
       const Vec3 d = sub(x, c);
@@ -230,8 +242,9 @@ void name_surfaces(BodyMesh& m, const Shape& shape, const std::string& where) {
     for (int k = 0; k < 3; ++k) x[k] = {m.X[3 * t[k]], m.X[3 * t[k] + 1], m.X[3 * t[k] + 2]};
     const std::string name = shape.surface_of(x);
     if (name.empty()) {
-      throw Error(where + ": internal error: a boundary triangle of the generated mesh lies on "
-                          "no face of the shape");
+      throw Error(where +
+                  ": internal error: a boundary triangle of the generated mesh lies on "
+                  "no face of the shape");
     }
     m.surfaces[name].push_back(t);  // boundary_triangles is sorted, so each surface is too
   }
@@ -241,9 +254,10 @@ void name_surfaces(BodyMesh& m, const Shape& shape, const std::string& where) {
 BodyMesh generate(const Shape& shape, double size, const std::string& where) {
   const double estimate = 8.5 * shape.volume / (size * size * size);  // regular tets of edge size
   if (estimate > kMaxEstimatedTets) {
-    throw InputError(where + ": parameter 'size' (" + str(size) + ") is too small for this body: "
-                     "about " + str(estimate) + " tetrahedra, the limit is " +
-                     str(kMaxEstimatedTets));
+    throw InputError(where + ": parameter 'size' (" + str(size) +
+                     ") is too small for this body: "
+                     "about " +
+                     str(estimate) + " tetrahedra, the limit is " + str(kMaxEstimatedTets));
   }
   detail::GmshSession session;
   BodyMesh m;
@@ -270,7 +284,8 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
                         const std::string& where) {
   const std::string file = p.get<std::string>("file");
   if (file.empty()) {
-    throw InputError(where + ": parameter 'file' is empty; type 'file' needs a Gmsh .msh 4.1 "
+    throw InputError(where +
+                     ": parameter 'file' is empty; type 'file' needs a Gmsh .msh 4.1 "
                      "file (relative to the input file's directory)");
   }
   std::filesystem::path path(file);
@@ -295,7 +310,8 @@ BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string
   if (type == "cylinder") return generate(cylinder_shape(p, where, false), size, where);
   if (type == "hollow cylinder") return generate(cylinder_shape(p, where, true), size, where);
   if (type == "spherical shell") return generate(shell_shape(p, where), size, where);
-  throw InputError(where + ": parameter 'type' is '" + type + "'; allowed: 'box', 'cylinder', "
+  throw InputError(where + ": parameter 'type' is '" + type +
+                   "'; allowed: 'box', 'cylinder', "
                    "'hollow cylinder', 'spherical shell', 'file'");
 }
 

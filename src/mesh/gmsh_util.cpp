@@ -69,7 +69,7 @@ void rethrow_gmsh_error(const std::string& where, const std::string& what) {
   try {
     throw;
   } catch (const InputError&) {
-    throw;  // already a user-facing message
+    throw;                          // already a user-facing message
   } catch (const std::string& s) {  // Gmsh 4.8 throws the error text
     message = s;
   } catch (const std::exception& e) {

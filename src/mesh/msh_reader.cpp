@@ -88,7 +88,8 @@ void read_surfaces(BodyMesh& m, const std::vector<std::size_t>& used_tags) {
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups, 2);
   for (const auto& g : groups) {
-    const std::vector<Tri> tris = detail::orient_on_body(m, physical_triangles(g.second, used_tags));
+    const std::vector<Tri> tris =
+        detail::orient_on_body(m, physical_triangles(g.second, used_tags));
     if (tris.empty()) continue;
     std::vector<Tri>& named = m.surfaces[physical_name(2, g.second)];
     named.insert(named.end(), tris.begin(), tris.end());

@@ -2,7 +2,6 @@
 // lengths and cross-parameter conditions are checked by build_mesh.
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
-
 #include <limits>
 
 #include "emcontact/mesh/generate.hpp"

@@ -10,8 +10,8 @@
 namespace emc::mesh {
 
 struct BodyMesh {
-  std::vector<double> X;                 ///< reference coordinates, 3 per node
-  std::vector<int> tets;                 ///< 4 node indices per tet (0-based, this body's nodes)
+  std::vector<double> X;  ///< reference coordinates, 3 per node
+  std::vector<int> tets;  ///< 4 node indices per tet (0-based, this body's nodes)
   /// Named boundary surfaces (Gmsh physical surface names, or the generators' face names),
   /// triangles with outward orientation (node indices of this body).
   std::map<std::string, std::vector<std::array<int, 3>>> surfaces;
@@ -39,6 +39,7 @@ std::vector<std::array<int, 3>> boundary_triangles(const BodyMesh& m);
 
 /// The sorted, unique nodes of a named surface; throws InputError naming `where` and the
 /// available surface names if it does not exist. The name "boundary" is always available.
-std::vector<int> surface_nodes(const BodyMesh& m, const std::string& name, const std::string& where);
+std::vector<int> surface_nodes(const BodyMesh& m, const std::string& name,
+                               const std::string& where);
 
 }  // namespace emc::mesh

@@ -1,10 +1,10 @@
 #pragma once
 // Geometric helpers shared by the mesh unit tests.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Teuchos_Array.hpp>
 #include <Teuchos_ParameterList.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,8 +13,6 @@
 #include <utility>
 #include <vector>
 
-#include <unistd.h>
-
 #include "emcontact/mesh/body_mesh.hpp"
 
 namespace emc::mesh::test {
@@ -22,13 +20,21 @@ namespace emc::mesh::test {
 using Vec3 = std::array<double, 3>;
 using Tri = std::array<int, 3>;
 
-inline Vec3 point(const BodyMesh& m, int i) { return {m.X[3 * i], m.X[3 * i + 1], m.X[3 * i + 2]}; }
-inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 point(const BodyMesh& m, int i) {
+  return {m.X[3 * i], m.X[3 * i + 1], m.X[3 * i + 2]};
+}
+inline Vec3 sub(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
 
 /// (b-a)x(c-a): twice the area times the unit normal.
 inline Vec3 area_normal(const BodyMesh& m, const Tri& t) {
@@ -121,7 +127,7 @@ inline std::vector<Tri> all_named(const BodyMesh& m) {
 }
 
 inline Teuchos::Array<double> arr(double x, double y, double z) {
-  return Teuchos::Array<double>(Teuchos::tuple(x, y, z));
+  return Teuchos::Array<double>(std::vector<double>{x, y, z});
 }
 
 /// A fresh scratch directory for one test (removed by the caller's ScratchDir destructor).

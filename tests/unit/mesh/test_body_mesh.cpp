@@ -60,7 +60,9 @@ TEST(BodyMesh, TetVolumeIsSignedSixthOfTripleProduct) {
   EXPECT_EQ(m.num_tets(), 2);
 }
 
-TEST(BodyMesh, CheckTetsAcceptsValidMesh) { EXPECT_NO_THROW(check_tets(two_tets(), "here")); }
+TEST(BodyMesh, CheckTetsAcceptsValidMesh) {
+  EXPECT_NO_THROW(check_tets(two_tets(), "here"));
+}
 
 TEST(BodyMesh, CheckTetsRefusesInvertedTetWithOneBasedId) {
   BodyMesh m = two_tets();
@@ -97,8 +99,7 @@ TEST(BodyMesh, CheckTetsRefusesDegenerateTet) {
     FAIL() << "no exception";
   } catch (const InputError& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find("where: element 2 is degenerate (volume 0, mean"), std::string::npos)
-        << msg;
+    EXPECT_NE(msg.find("where: element 2 is degenerate (volume 0, mean"), std::string::npos) << msg;
   }
 }
 
@@ -129,7 +130,7 @@ TEST(BodyMesh, BoundaryExcludesSharedFaceAndIsSorted) {
   EXPECT_TRUE(std::is_sorted(b.begin(), b.end()));
   for (const Tri& t : b) {
     EXPECT_EQ(t[0], *std::min_element(t.begin(), t.end()));  // canonical rotation
-    EXPECT_NE(unoriented({t})[0], (Tri{0, 1, 2}));             // the shared face
+    EXPECT_NE(unoriented({t})[0], (Tri{0, 1, 2}));           // the shared face
     EXPECT_GT(dot(area_normal(m, t), sub(centroid(m, t), Vec3{0.2, 0.2, 0})), 0.0);
   }
   EXPECT_TRUE(is_closed(b));

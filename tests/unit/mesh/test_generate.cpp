@@ -10,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <Teuchos_StandardParameterEntryValidators.hpp>
-
 #include <chrono>
 #include <iostream>
 #include <set>
@@ -214,16 +213,16 @@ TEST(GenerateBox, DefaultsGiveUnitCube) {
   Teuchos::ParameterList p("Mesh");
   const BodyMesh m = build_mesh(p, "", "box");
   EXPECT_NEAR(total_volume(m), 1.0, 1e-12);
-  EXPECT_EQ(surface_nodes(m, "boundary", "box").size(),
-            static_cast<std::size_t>(m.num_nodes()) - [&] {
-              int inner = 0;  // nodes strictly inside the cube
-              for (int i = 0; i < m.num_nodes(); ++i) {
-                bool in = true;
-                for (int d = 0; d < 3; ++d) in = in && m.X[3 * i + d] > 1e-9 && m.X[3 * i + d] < 1 - 1e-9;
-                inner += in;
-              }
-              return inner;
-            }());
+  EXPECT_EQ(
+      surface_nodes(m, "boundary", "box").size(), static_cast<std::size_t>(m.num_nodes()) - [&] {
+        int inner = 0;  // nodes strictly inside the cube
+        for (int i = 0; i < m.num_nodes(); ++i) {
+          bool in = true;
+          for (int d = 0; d < 3; ++d) in = in && m.X[3 * i + d] > 1e-9 && m.X[3 * i + d] < 1 - 1e-9;
+          inner += in;
+        }
+        return inner;
+      }());
 }
 
 TEST(GenerateBox, IsDeterministic) {
@@ -330,8 +329,8 @@ void check_shell_counts(const std::vector<std::pair<double, int>>& size_and_coun
     const std::size_t nb = boundary_triangles(m).size();
     const double t_boundary = seconds_since(t1);
     std::cout << "spherical shell 0.2/0.4 size " << size << ": " << m.num_tets() << " tets, "
-              << m.num_nodes() << " nodes, " << nb << " boundary triangles; build_mesh "
-              << t_mesh << " s, boundary_triangles " << t_boundary << " s\n";
+              << m.num_nodes() << " nodes, " << nb << " boundary triangles; build_mesh " << t_mesh
+              << " s, boundary_triangles " << t_boundary << " s\n";
     EXPECT_GT(min_volume(m), 0.0);
     EXPECT_NEAR(m.num_tets(), expected, tolerance * expected) << "size " << size;
   }
@@ -345,7 +344,9 @@ TEST(GenerateSphericalShell, TetCountsForSizes) {
 
 // The ~500k-tet shell (about 17 s, mostly Gmsh's Delaunay): run with
 // --gtest_also_run_disabled_tests.
-TEST(GenerateSphericalShell, DISABLED_LargeShell) { check_shell_counts({{0.0129, 504826}}, 0.2); }
+TEST(GenerateSphericalShell, DISABLED_LargeShell) {
+  check_shell_counts({{0.0129, 504826}}, 0.2);
+}
 
 }  // namespace
 }  // namespace emc::mesh::test

@@ -36,7 +36,7 @@ Written write_box_msh(const std::string& file) {
     double x0, y0, z0, x1, y1, z1;
     gmsh::model::getBoundingBox(2, f.second, x0, y0, z0, x1, y1, z1);
     (x1 < 1e-3 ? left : rest)  // OCC boxes are slightly padded
-       .push_back(f.second);
+        .push_back(f.second);
   }
   gmsh::model::setPhysicalName(3, gmsh::model::addPhysicalGroup(3, {volume}, 7), "solid");
   gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, left, 1), "left");

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package emcontact needs to build, test and plot (run as root).
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+$SUDO apt-get update -q
+# libptscotch-dev must be named: Trilinos' CMake configs link it but no package depends on it.
+$SUDO apt-get install -y -q --no-install-recommends \
+  g++ cmake ninja-build git \
+  trilinos-all-dev libptscotch-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev \
+  libgmsh-dev gmsh libgtest-dev libbenchmark-dev \
+  python3-matplotlib python3-numpy python3-h5py
