@@ -21,10 +21,13 @@ int main(int argc, char** argv) {
     Teuchos::Time wall("wall", true);
     const auto s = emc::app::run(opt, comm);
     if (root) {
-      std::printf("emcontact: %ld steps to t = %.6g on %d rank(s) in %.3f s, %d Newton "
-                  "iterations, max |E-E0|/|E0| = %.3e; output in %s\n",
-                  s.steps, s.time, comm->getSize(), wall.totalElapsedTime(true),
-                  s.newton_iterations, s.max_energy_error, s.output_dir.c_str());
+      std::printf("emcontact: %lld tets, %lld nodes on %d rank(s); setup %.3f s; %ld steps to "
+                  "t = %.6g in %.3f s (%.4f s/step, %.2f Newton iterations/step); total %.3f "
+                  "s; max |E-E0|/|E0| = %.3e; output in %s\n",
+                  s.tets, s.nodes, comm->getSize(), s.setup_seconds, s.steps, s.time,
+                  s.stepping_seconds, s.steps ? s.stepping_seconds / s.steps : 0.0,
+                  s.steps ? double(s.newton_iterations) / s.steps : 0.0,
+                  wall.totalElapsedTime(true), s.max_energy_error, s.output_dir.c_str());
     }
     Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, false);
     return 0;

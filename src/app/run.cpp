@@ -141,6 +141,7 @@ double energy_scale(const output::MonitorRow& r0) {
 }  // namespace
 
 Summary run(const Options& opt, RCP<const Comm> comm) {
+  Teuchos::Time clock("emcontact: wall", true);
   const input::Input in = input::read_input(opt.input, opt.overrides);
   const auto& P = *in.params;
   auto meshes = build_meshes(P, in.dir, opt.input, *comm);
@@ -164,6 +165,10 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   const bool root = comm->getRank() == 0;
   Progress progress(root && out.get<bool>("progress"), stepper.end());
 
+  sum.tets = model.num_tets();
+  sum.nodes = model.num_nodes();
+  comm->barrier();
+  sum.setup_seconds = clock.totalElapsedTime(true);
   const auto row0 = monitor_row(disc, state, time::StepReport{});
   const double escale = energy_scale(row0);
   if (root) w.monitors->append(row0);
@@ -192,6 +197,8 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   if (root) w.monitors->flush(true);
   sum.steps = state.step;
   sum.time = state.t;
+  comm->barrier();
+  sum.stepping_seconds = clock.totalElapsedTime(true) - sum.setup_seconds;
   return sum;
 }
 

@@ -122,8 +122,8 @@ std::pair<double, double> radii_params(const Teuchos::ParameterList& p, const st
 // ---- shapes -----------------------------------------------------------------------------
 
 /// True if every node of `t` satisfies |f(node)| < tol.
-bool all_near(const std::array<Vec3, 3>& t, const std::function<double(const Vec3&)>& f,
-              double tol) {
+template <class F>
+bool all_near(const std::array<Vec3, 3>& t, const F& f, double tol) {
   return std::abs(f(t[0])) < tol && std::abs(f(t[1])) < tol && std::abs(f(t[2])) < tol;
 }
 
@@ -135,10 +135,10 @@ Shape box_shape(const Teuchos::ParameterList& p, const std::string& where) {
   s.volume = 1.0;
   for (int d = 0; d < 3; ++d) {
     if (!(hi[d] > lo[d])) {
-      throw InputError(where +
-                       ": parameter 'upper corner' must exceed 'lower corner' in every "
-                       "component; " +
-                       std::string(1, axes[d]) + ": " + str(hi[d]) + " <= " + str(lo[d]));
+      const std::string component =
+          std::string(1, axes[d]) + ": " + str(hi[d]) + " <= " + str(lo[d]);
+      throw InputError(where + ": parameter 'upper corner' must exceed 'lower corner' in " +
+                       "every component; " + component);
     }
     s.volume *= hi[d] - lo[d];
   }
@@ -149,12 +149,10 @@ Shape box_shape(const Teuchos::ParameterList& p, const std::string& where) {
   s.surface_of = [lo, hi, tol](const std::array<Vec3, 3>& t) -> std::string {
     static const char* names[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
     for (int d = 0; d < 3; ++d) {
-      if (all_near(
-              t, [&](const Vec3& x) { return x[d] - lo[d]; }, tol))
-        return names[d][0];
-      if (all_near(
-              t, [&](const Vec3& x) { return x[d] - hi[d]; }, tol))
-        return names[d][1];
+      const auto from_lo = [&](const Vec3& x) { return x[d] - lo[d]; };
+      const auto from_hi = [&](const Vec3& x) { return x[d] - hi[d]; };
+      if (all_near(t, from_lo, tol)) return names[d][0];
+      if (all_near(t, from_hi, tol)) return names[d][1];
     }
     return "";
   };
@@ -193,9 +191,8 @@ Shape cylinder_shape(const Teuchos::ParameterList& p, const std::string& where, 
   s.surface_of = [c, a, h, ri, ro, hollow, tol](const std::array<Vec3, 3>& t) -> std::string {
     const auto height = [&](const Vec3& x) { return dot(sub(x, c), a); };
     if (all_near(t, height, tol)) return "bottom";
-    if (all_near(
-            t, [&](const Vec3& x) { return height(x) - h; }, tol))
-      return "top";
+    const auto below_top = [&](const Vec3& x) { return height(x) - h; };
+    if (all_near(t, below_top, tol)) return "top";
     double r = 0.0;  // mean distance of the nodes from the axis
     for (const Vec3& x : t) {
       const Vec3 d = sub(x, c);
@@ -242,9 +239,8 @@ void name_surfaces(BodyMesh& m, const Shape& shape, const std::string& where) {
     for (int k = 0; k < 3; ++k) x[k] = {m.X[3 * t[k]], m.X[3 * t[k] + 1], m.X[3 * t[k] + 2]};
     const std::string name = shape.surface_of(x);
     if (name.empty()) {
-      throw Error(where +
-                  ": internal error: a boundary triangle of the generated mesh lies on "
-                  "no face of the shape");
+      throw Error(where + ": internal error: a boundary triangle of the generated mesh " +
+                  "lies on no face of the shape");
     }
     m.surfaces[name].push_back(t);  // boundary_triangles is sorted, so each surface is too
   }
@@ -254,10 +250,9 @@ void name_surfaces(BodyMesh& m, const Shape& shape, const std::string& where) {
 BodyMesh generate(const Shape& shape, double size, const std::string& where) {
   const double estimate = 8.5 * shape.volume / (size * size * size);  // regular tets of edge size
   if (estimate > kMaxEstimatedTets) {
-    throw InputError(where + ": parameter 'size' (" + str(size) +
-                     ") is too small for this body: "
-                     "about " +
-                     str(estimate) + " tetrahedra, the limit is " + str(kMaxEstimatedTets));
+    throw InputError(where + ": parameter 'size' (" + str(size) + ") is too small for this " +
+                     "body: about " + str(estimate) + " tetrahedra, the limit is " +
+                     str(kMaxEstimatedTets));
   }
   detail::GmshSession session;
   BodyMesh m;
@@ -284,9 +279,8 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
                         const std::string& where) {
   const std::string file = p.get<std::string>("file");
   if (file.empty()) {
-    throw InputError(where +
-                     ": parameter 'file' is empty; type 'file' needs a Gmsh .msh 4.1 "
-                     "file (relative to the input file's directory)");
+    throw InputError(where + ": parameter 'file' is empty; type 'file' needs a Gmsh .msh " +
+                     "4.1 file (relative to the input file's directory)");
   }
   std::filesystem::path path(file);
   if (path.is_relative() && !input_dir.empty()) path = std::filesystem::path(input_dir) / path;
@@ -310,9 +304,8 @@ BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string
   if (type == "cylinder") return generate(cylinder_shape(p, where, false), size, where);
   if (type == "hollow cylinder") return generate(cylinder_shape(p, where, true), size, where);
   if (type == "spherical shell") return generate(shell_shape(p, where), size, where);
-  throw InputError(where + ": parameter 'type' is '" + type +
-                   "'; allowed: 'box', 'cylinder', "
-                   "'hollow cylinder', 'spherical shell', 'file'");
+  throw InputError(where + ": parameter 'type' is '" + type + "'; allowed: 'box', " +
+                   "'cylinder', 'hollow cylinder', 'spherical shell', 'file'");
 }
 
 }  // namespace emc::mesh

@@ -25,6 +25,8 @@ struct Summary {
   int newton_iterations = 0;
   double max_energy_error = 0;  ///< max_n |E_n - E_0| / |E_0|
   std::string output_dir;
+  long long tets = 0, nodes = 0;
+  double setup_seconds = 0, stepping_seconds = 0;  ///< wall time before / in the time loop
 };
 
 /// Runs the whole simulation on `comm`. Throws emc::Error (after writing what it had).

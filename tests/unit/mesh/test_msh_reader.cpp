@@ -212,5 +212,17 @@ TEST(ReadMsh, FileWithoutTetsIsRefused) {
   EXPECT_NE(msg.find("no 4-node tetrahedra"), std::string::npos) << msg;
 }
 
+TEST(ReadMsh, ExampleBall) {
+  const BodyMesh m = read_msh(std::string(EMC_MESH_DIR) + "/ball.msh", "ball", "ball.msh");
+  EXPECT_GT(min_volume(m), 0.0);
+  const double r = 0.2, v = 4.0 / 3.0 * 3.14159265358979323846 * r * r * r;
+  EXPECT_NEAR(total_volume(m), v, 0.05 * v);  // chords of ~0.07 on r = 0.2: theta^2/4 ~ 3%
+  ASSERT_EQ(m.surfaces.size(), 1u);
+  EXPECT_EQ(unoriented(m.surfaces.at("surface")), unoriented(boundary_triangles(m)));
+  EXPECT_TRUE(is_closed(m.surfaces.at("surface")));
+  for (const Tri& t : m.surfaces.at("surface"))
+    ASSERT_GT(dot(area_normal(m, t), centroid(m, t)), 0);
+}
+
 }  // namespace
 }  // namespace emc::mesh::test
