@@ -9,6 +9,7 @@
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/app/progress.hpp"
 #include "emcontact/app/run.hpp"
+#include "emcontact/contact/contact.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/input/input.hpp"
@@ -86,7 +87,7 @@ output::MonitorRow monitor_row(const fem::Discretization& disc, const time::Stat
     r.J[i] = m.J[i];
     r.com[i] = m.mass > 0 ? m.moment[i] / m.mass : 0.0;
   }
-  r.active_contacts = 0;
+  r.active_contacts = rep.contact.active;
   r.newton_iterations = rep.newton_iterations;
   r.dt = rep.dt;
   r.linear_iterations = rep.linear_iterations;
@@ -148,15 +149,15 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   const fem::Model model = fem::build_model(P, std::move(meshes), opt.input);
   const fem::Discretization disc(model, comm);
 
+  contact::Contact contact(disc, contact::build_pairs(P, model, opt.input));
   linalg::Elimination elim(disc.owned_map());
-  elim.set_constraints(owned_fixed_dofs(disc), {}, {});
   linalg::LinearSolver solver(P.sublist("Solver").sublist("Linear"), comm);
   time::Newton newton(disc, elim, solver,
                       time::newton_options(P.sublist("Solver").sublist("Newton")));
   time::State state;
   state.u = rcp(new Vector(disc.owned_map()));
   state.V = initial_velocity(disc);
-  time::Stepper stepper(P.sublist("Time"), newton, state);
+  time::Stepper stepper(P.sublist("Time"), newton, elim, owned_fixed_dofs(disc), &contact, state);
 
   const auto& out = P.sublist("Output");
   Summary sum;
@@ -186,7 +187,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         w.monitors->flush(false, 1.0);
       }
       w.fields_frame(disc, state);
-      progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, 0);
+      progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);
     }
   } catch (const Error&) {
     progress.finish();

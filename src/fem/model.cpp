@@ -49,6 +49,7 @@ void apply_dirichlet(const Teuchos::ParameterList& params, Model& m, const std::
       if (m.bodies[k].name == body) bi = static_cast<int>(k);
     if (bi < 0) throw InputError(where + "/body: no body named \"" + body + "\"");
     const Body& b = m.bodies[bi];
+    if (b.rigid) throw InputError(where + "/body: \"" + body + "\" is a rigid surface: it is fixed already");
     for (int n : mesh::surface_nodes(b.mesh, surface, where + "/surface"))
       m.fixed[b.node_begin + n] = 1;
   }
@@ -67,8 +68,15 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
     if (k >= meshes.size()) throw Error("internal: fewer meshes than bodies");
     Body b = make_body(name, bl.sublist(name), std::move(meshes[k++]),
                        file + ": Bodies/" + name);
-    b.node_begin = m.num_nodes();
-    b.tet_begin = m.num_tets();
+    b.node_begin = b.node_end = m.num_nodes();
+    b.tet_begin = b.tet_end = m.num_tets();
+    if (b.mesh.tets.empty()) {  // a rigid surface body
+      b.rigid = true;
+      b.rigid_begin = static_cast<int>(m.rigid_X.size() / 3);
+      m.rigid_X.insert(m.rigid_X.end(), b.mesh.X.begin(), b.mesh.X.end());
+      m.bodies.push_back(std::move(b));
+      continue;
+    }
     m.X.insert(m.X.end(), b.mesh.X.begin(), b.mesh.X.end());
     for (int t : b.mesh.tets) m.tets.push_back(b.node_begin + t);
     b.node_end = m.num_nodes();
@@ -105,6 +113,7 @@ std::vector<double> initial_velocity(const Model& m) {
   std::vector<double> V(m.X.size(), 0.0);
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const Body& body = m.bodies[b];
+    if (body.rigid) continue;
     const auto c = centre_of_mass(m, static_cast<int>(b));
     const auto& v = body.velocity;
     const auto& w = body.angular_velocity;

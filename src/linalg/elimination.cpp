@@ -43,9 +43,14 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
   }
   P_->fillComplete(owned_, owned_);
 
+  fixed_ = fixed;
+  set_dummy_values(dummy_diag);
+}
+
+void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag) {
   D_ = rcp(new Matrix(owned_, 1));
   std::map<GO, double> diag;
-  for (GO g : fixed) diag[g] = 1.0;
+  for (GO g : fixed_) diag[g] = 1.0;
   for (const auto& [g, v] : dummy_diag) diag[g] = v;
   for (const auto& [g, v] : diag)
     D_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),

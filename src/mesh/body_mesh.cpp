@@ -110,7 +110,7 @@ void check_tets(const BodyMesh& m, const std::string& where) {
 
 void check_tets(const BodyMesh& m, const std::string& where,
                 const std::vector<std::size_t>& element_ids) {
-  if (m.num_tets() == 0) throw InputError(where + ": the mesh has no tetrahedra");
+  if (m.num_tets() == 0) return;  // a rigid surface: no volume elements to check
   const double mean = mean_abs_volume(m);
   for (int e = 0; e < m.num_tets(); ++e) {
     const double v = tet_volume(m, e);
@@ -144,6 +144,11 @@ std::vector<std::array<int, 3>> boundary_triangles(const BodyMesh& m) {
 std::vector<int> surface_nodes(const BodyMesh& m, const std::string& name,
                                const std::string& where) {
   const auto it = m.surfaces.find(name);
+  if (it == m.surfaces.end() && name == "boundary" && is_rigid(m)) {
+    std::vector<int> all(m.num_nodes());
+    for (int i = 0; i < m.num_nodes(); ++i) all[i] = i;
+    return all;
+  }
   std::vector<Tri> boundary;
   if (it == m.surfaces.end() && name == "boundary") boundary = boundary_triangles(m);
   if (it == m.surfaces.end() && name != "boundary") {

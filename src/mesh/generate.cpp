@@ -1,5 +1,6 @@
 // Built-in meshes through Gmsh's OpenCASCADE kernel (box, cylinder, hollow cylinder, spherical
-// shell), their named surfaces, and the dispatch of a validated `Mesh` sublist.
+// shell), their named surfaces, the rigid surfaces (plane, rectangle: structured triangle
+// grids), and the dispatch of a validated `Mesh` sublist.
 #include "emcontact/mesh/generate.hpp"
 
 #include <gmsh.h>
@@ -43,11 +44,21 @@ double dot(const Vec3& a, const Vec3& b) {
 double norm(const Vec3& a) {
   return std::sqrt(dot(a, a));
 }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3 scaled(double s, const Vec3& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
 
 std::string str(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
+}
+
+std::string str(const Vec3& v) {
+  return "{" + str(v[0]) + ", " + str(v[1]) + ", " + str(v[2]) + "}";
 }
 
 // ---- parameters -------------------------------------------------------------------------
@@ -108,6 +119,16 @@ Vec3 point_param(const Teuchos::ParameterList& p, const std::string& name,
   return {a[0], a[1], a[2]};
 }
 
+/// The parameter `axis`, normalised; refuses a zero (or non-finite) vector.
+Vec3 unit_axis(const Teuchos::ParameterList& p, const std::string& where) {
+  const Vec3 axis = point_param(p, "axis", where);
+  const double len = norm(axis);
+  if (!(len > 0.0) || !std::isfinite(len)) {
+    throw InputError(where + ": parameter 'axis' must be a nonzero vector");
+  }
+  return scaled(1.0 / len, axis);
+}
+
 /// `inner radius` and `outer radius`, with inner < outer.
 std::pair<double, double> radii_params(const Teuchos::ParameterList& p, const std::string& where) {
   const double ri = positive_param(p, "inner radius", where);
@@ -162,11 +183,8 @@ Shape box_shape(const Teuchos::ParameterList& p, const std::string& where) {
 /// Solid (`hollow` false: parameter `radius`) or hollow (`inner/outer radius`) cylinder.
 Shape cylinder_shape(const Teuchos::ParameterList& p, const std::string& where, bool hollow) {
   const Vec3 c = point_param(p, "center", where);
-  const Vec3 axis = point_param(p, "axis", where);
+  const Vec3 a = unit_axis(p, where);
   const double h = positive_param(p, "height", where);
-  const double len = norm(axis);
-  if (!(len > 0.0)) throw InputError(where + ": parameter 'axis' must be a nonzero vector");
-  const Vec3 a{axis[0] / len, axis[1] / len, axis[2] / len};
   double ri = 0.0, ro = 0.0;
   if (hollow) {
     std::tie(ri, ro) = radii_params(p, where);
@@ -221,6 +239,75 @@ Shape shell_shape(const Teuchos::ParameterList& p, const std::string& where) {
     return r < 0.5 * (ri + ro) ? "inner" : "outer";
   };
   return s;
+}
+
+// ---- rigid surfaces (no tets) -------------------------------------------------------------
+
+/// Type `plane`: the square of half side `half width` centred at `center`, normal `axis`.
+BodyMesh plane_mesh(const Teuchos::ParameterList& p, double size, const std::string& where) {
+  const Vec3 c = point_param(p, "center", where);
+  const Vec3 n = unit_axis(p, where);
+  const double hw = positive_param(p, "half width", where);
+  if (!std::isfinite(2.0 * hw)) {
+    throw InputError(where + ": parameter 'half width' (" + str(hw) + ") is too large");
+  }
+  // In-plane unit vectors t1, t2 with t1 x t2 = n; t1 from the coordinate axis least aligned
+  // with n (n = +z gives t1 = +x, t2 = +y).
+  int k = 0;
+  for (int d = 1; d < 3; ++d) {
+    if (std::abs(n[d]) < std::abs(n[k])) k = d;
+  }
+  Vec3 e{0.0, 0.0, 0.0};
+  e[k] = 1.0;
+  const Vec3 u = sub(e, scaled(dot(e, n), n));
+  const Vec3 t1 = scaled(1.0 / norm(u), u);
+  const Vec3 t2 = cross(n, t1);
+  Vec3 origin{};
+  for (int d = 0; d < 3; ++d) origin[d] = c[d] - hw * t1[d] - hw * t2[d];
+  const auto cells = detail::grid_cells(2.0 * hw, 2.0 * hw, size);
+  return detail::triangle_grid(origin, scaled(2.0 * hw, t1), scaled(2.0 * hw, t2), cells[0],
+                               cells[1]);
+}
+
+/// Type `rectangle`: axis-aligned, from `lower corner` to `upper corner` (equal in exactly one
+/// component, the normal direction), normal +`axis` (parallel to that direction).
+BodyMesh rectangle_mesh(const Teuchos::ParameterList& p, double size, const std::string& where) {
+  const Vec3 lo = point_param(p, "lower corner", where);
+  const Vec3 hi = point_param(p, "upper corner", where);
+  const Vec3 extent = sub(hi, lo);
+  int flat = -1, zeros = 0, positive = 0;
+  for (int d = 0; d < 3; ++d) {
+    if (extent[d] == 0.0) {
+      flat = d;
+      ++zeros;
+    }
+    if (extent[d] > 0.0 && std::isfinite(extent[d])) ++positive;
+  }
+  if (zeros != 1 || positive != 2) {
+    throw InputError(where + ": type 'rectangle': 'upper corner' - 'lower corner' is " +
+                     str(extent) +
+                     "; it must be zero in exactly one component (the normal direction) and "
+                     "positive in the other two");
+  }
+  const char* axes = "xyz";
+  const Vec3 axis = point_param(p, "axis", where);
+  const double len = norm(axis);
+  const int q1 = (flat + 1) % 3, q2 = (flat + 2) % 3;  // e_q1 x e_q2 = e_flat
+  if (!(len > 0.0) || !std::isfinite(len) || std::abs(axis[q1]) > 1e-12 * len ||
+      std::abs(axis[q2]) > 1e-12 * len) {
+    Vec3 e{0.0, 0.0, 0.0};
+    e[flat] = 1.0;
+    throw InputError(where + ": parameter 'axis' " + str(axis) +
+                     " must be parallel to the rectangle's normal direction " + axes[flat] +
+                     " (the component where 'upper corner' equals 'lower corner'): " + str(e) +
+                     " or " + str(scaled(-1.0, e)));
+  }
+  Vec3 a{0.0, 0.0, 0.0}, b{0.0, 0.0, 0.0};
+  a[q1] = extent[q1];
+  b[q2] = extent[q2];
+  if (axis[flat] < 0.0) std::swap(a, b);  // normal a x b along -e_flat
+  const auto cells = detail::grid_cells(norm(a), norm(b), size);
+  return detail::triangle_grid(lo, a, b, cells[0], cells[1]);
 }
 
 // ---- meshing ----------------------------------------------------------------------------
@@ -304,8 +391,11 @@ BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string
   if (type == "cylinder") return generate(cylinder_shape(p, where, false), size, where);
   if (type == "hollow cylinder") return generate(cylinder_shape(p, where, true), size, where);
   if (type == "spherical shell") return generate(shell_shape(p, where), size, where);
+  if (type == "plane") return plane_mesh(p, size, where);
+  if (type == "rectangle") return rectangle_mesh(p, size, where);
   throw InputError(where + ": parameter 'type' is '" + type + "'; allowed: 'box', " +
-                   "'cylinder', 'hollow cylinder', 'spherical shell', 'file'");
+                   "'cylinder', 'hollow cylinder', 'spherical shell', 'plane', 'rectangle', " +
+                   "'file'");
 }
 
 }  // namespace emc::mesh

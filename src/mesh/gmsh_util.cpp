@@ -115,20 +115,26 @@ int local_node(const std::vector<std::size_t>& used_tags, std::size_t tag) {
   return it != used_tags.end() && *it == tag ? static_cast<int>(it - used_tags.begin()) : -1;
 }
 
-BodyMesh body_from_gmsh(const GmshTets& t, std::vector<std::size_t>& used_tags) {
-  used_tags = t.node_tags;
+std::vector<double> gmsh_node_coordinates(const std::vector<std::size_t>& element_nodes,
+                                          std::vector<std::size_t>& used_tags) {
+  used_tags = element_nodes;
   std::sort(used_tags.begin(), used_tags.end());
   used_tags.erase(std::unique(used_tags.begin(), used_tags.end()), used_tags.end());
 
-  BodyMesh m;
-  m.X.assign(3 * used_tags.size(), 0.0);
+  std::vector<double> X(3 * used_tags.size(), 0.0);
   std::vector<std::size_t> node_tags;
   std::vector<double> coords, params;
   gmsh::model::mesh::getNodes(node_tags, coords, params, -1, -1, false, false);
   for (std::size_t i = 0; i < node_tags.size(); ++i) {
     const int k = local_node(used_tags, node_tags[i]);
-    if (k >= 0) std::copy_n(&coords[3 * i], 3, &m.X[3 * static_cast<std::size_t>(k)]);
+    if (k >= 0) std::copy_n(&coords[3 * i], 3, &X[3 * static_cast<std::size_t>(k)]);
   }
+  return X;
+}
+
+BodyMesh body_from_gmsh(const GmshTets& t, std::vector<std::size_t>& used_tags) {
+  BodyMesh m;
+  m.X = gmsh_node_coordinates(t.node_tags, used_tags);
   m.tets.resize(t.node_tags.size());
   for (std::size_t i = 0; i < t.node_tags.size(); ++i) {
     m.tets[i] = local_node(used_tags, t.node_tags[i]);

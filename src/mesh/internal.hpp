@@ -57,6 +57,11 @@ GmshTets gmsh_tets(const std::vector<int>& entities, const std::string& where);
 /// kept nodes (local index i <-> used_tags[i]).
 BodyMesh body_from_gmsh(const GmshTets& t, std::vector<std::size_t>& used_tags);
 
+/// The coordinates (3 per node) of the nodes used by the Gmsh node tags `element_nodes`,
+/// numbered 0..n-1 by increasing Gmsh tag; `used_tags` receives those sorted, unique tags.
+std::vector<double> gmsh_node_coordinates(const std::vector<std::size_t>& element_nodes,
+                                          std::vector<std::size_t>& used_tags);
+
 /// Local index of Gmsh node `tag` in the sorted `used_tags`, or -1 if it is not used.
 int local_node(const std::vector<std::size_t>& used_tags, std::size_t tag);
 
@@ -65,6 +70,18 @@ int local_node(const std::vector<std::size_t>& used_tags, std::size_t tag);
 /// internal surface) keeps its given orientation; a triangle that is no face of `m` is dropped.
 std::vector<std::array<int, 3>> orient_on_body(const BodyMesh& m,
                                                const std::vector<std::array<int, 3>>& tris);
+
+/// The numbers of cells (n1, n2) of a grid on an l1 x l2 rectangle with cells of edge about
+/// `size`: ceil(l / size) each (at least 1), but at most kMaxGridCells cells in all (200 x 200
+/// on a square): larger, still about square cells if `size` is too small for the extents.
+constexpr double kMaxGridCells = 40000;
+std::array<int, 2> grid_cells(double l1, double l2, double size);
+
+/// A rigid surface (no tets): the n1 x n2 grid of parallelograms spanned by `a` / n1 and
+/// `b` / n2 from `origin` (node (i, j) at origin + i/n1 a + j/n2 b), each cut into two
+/// triangles whose normal (q-p)x(r-p) points along a x b; all triangles in surface `surface`.
+BodyMesh triangle_grid(const std::array<double, 3>& origin, const std::array<double, 3>& a,
+                       const std::array<double, 3>& b, int n1, int n2);
 
 /// Rotates `t` (keeping its orientation) so that its smallest node comes first.
 std::array<int, 3> canonical_rotation(const std::array<int, 3>& t);

@@ -1,5 +1,6 @@
 // The valid parameters of a body's `Mesh` sublist (defaults, validators, doc strings). Array
-// lengths and cross-parameter conditions are checked by build_mesh.
+// lengths and cross-parameter conditions are checked by build_mesh. Teuchos only (emc_params):
+// the input module uses it without the mesh library.
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <limits>
@@ -32,8 +33,10 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
   Teuchos::setStringToIntegralParameter<int>(
       "type", "box",
       "Shape of the body: a built-in Gmsh mesh ('box', 'cylinder', 'hollow cylinder', "
-      "'spherical shell') or a Gmsh .msh 4.1 file ('file')",
-      Teuchos::tuple<std::string>("box", "cylinder", "hollow cylinder", "spherical shell", "file"),
+      "'spherical shell'), a rigid surface ('plane', 'rectangle': triangles only, fixed in "
+      "space) or a Gmsh .msh 4.1 file ('file')",
+      Teuchos::tuple<std::string>("box", "cylinder", "hollow cylinder", "spherical shell",
+                                  "plane", "rectangle", "file"),
       Teuchos::tuple<std::string>(
           "axis-aligned box between 'lower corner' and 'upper corner'; surfaces xmin, xmax, "
           "ymin, ymax, zmin, zmax",
@@ -42,22 +45,41 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
           "hollow cylinder ('center', 'axis', 'height', 'inner radius', 'outer radius'); "
           "surfaces bottom, top, outer, inner",
           "spherical shell ('center', 'inner radius', 'outer radius'); surfaces outer, inner",
-          "Gmsh .msh 4.1 file ('file', 'volume'); surfaces: its physical surfaces"),
-      Teuchos::tuple<int>(0, 1, 2, 3, 4), pl.get());
+          "rigid square ('center', normal 'axis', 'half width'), a grid of triangles of edge "
+          "about 'size' (at most 200 x 200 squares, larger ones if 'size' is too small), "
+          "normals along +'axis'; surface 'surface'",
+          "rigid axis-aligned rectangle from 'lower corner' to 'upper corner' (equal in exactly "
+          "one component, the normal direction), a grid of triangles of edge about 'size', "
+          "normals along +'axis' (parallel to the normal direction); surface 'surface'",
+          "Gmsh .msh 4.1 file ('file', 'volume'); surfaces: its physical surfaces. A file with "
+          "triangles and no tetrahedra is a rigid surface: triangles oriented as in the file, "
+          "surfaces: its physical surfaces and 'surface' (all triangles)"),
+      Teuchos::tuple<int>(0, 1, 2, 3, 4, 5, 6), pl.get());
   pl->set("file", std::string(""),
           "Gmsh .msh 4.1 file (type 'file'), relative to the input file's directory; its "
           "physical surfaces become the named surfaces");
   pl->set("volume", std::string(""),
-          "Physical volume of 'file' to use (type 'file'); empty: all 4-node tetrahedra");
-  set_positive(*pl, "size", 0.1, "Target element edge length of the built-in meshes");
-  set_point(*pl, "lower corner", 0.0, 0.0, 0.0, "Lower corner of the box (type 'box')");
+          "Physical volume of 'file' to use (type 'file'); empty: all 4-node tetrahedra (or, "
+          "in a file without tetrahedra, all triangles: a rigid surface)");
+  set_positive(*pl, "size", 0.1,
+               "Target element edge length of the built-in meshes (tetrahedra, or the "
+               "triangles of 'plane' and 'rectangle')");
+  set_point(*pl, "lower corner", 0.0, 0.0, 0.0,
+            "Lower corner of the box (type 'box') or of the rectangle (type 'rectangle')");
   set_point(*pl, "upper corner", 1.0, 1.0, 1.0,
-            "Upper corner of the box (type 'box'), above 'lower corner' in every component");
+            "Upper corner of the box (type 'box'), above 'lower corner' in every component; of "
+            "the rectangle (type 'rectangle'), equal to 'lower corner' in exactly one component "
+            "(the normal direction) and above it in the other two");
   set_point(*pl, "center", 0.0, 0.0, 0.0,
-            "Center of the base disk (cylinders, surface 'bottom') or of the sphere (spherical "
-            "shell)");
+            "Center of the base disk (cylinders, surface 'bottom'), of the sphere (spherical "
+            "shell) or of the square (plane)");
   set_point(*pl, "axis", 0.0, 0.0, 1.0,
-            "Direction of the cylinder axis, from 'bottom' to 'top' (not normalized, nonzero)");
+            "Direction of the cylinder axis, from 'bottom' to 'top'; for 'plane' and "
+            "'rectangle' the normal of the surface, pointing to the side contact happens on "
+            "(not normalized, nonzero)");
+  set_positive(*pl, "half width", 1.0,
+               "Half the side of the square of type 'plane' (its extent from 'center' along "
+               "both in-plane directions)");
   set_positive(*pl, "height", 0.1, "Cylinder height along 'axis'");
   set_positive(*pl, "radius", 0.1, "Radius of the solid cylinder (type 'cylinder')");
   set_positive(*pl, "inner radius", 0.05,
@@ -65,6 +87,10 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
   set_positive(*pl, "outer radius", 0.1,
                "Outer radius ('hollow cylinder', 'spherical shell'), above 'inner radius'");
   return pl;
+}
+
+bool is_rigid_surface_type(const std::string& type) {
+  return type == "plane" || type == "rectangle";
 }
 
 }  // namespace emc::mesh

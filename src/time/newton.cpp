@@ -24,6 +24,7 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
                linalg::LinearSolver& solver, NewtonOptions opt)
     : disc_(disc), elim_(elim), solver_(solver), opt_(opt) {
   A_ = rcp(new FEMatrix(disc_.graph()));
+  g_ = rcp(new Vector(disc_.owned_map()));
 }
 
 NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
@@ -31,7 +32,8 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
   static auto& t_elim = *TimeMonitor::getNewTimer("emcontact: elimination");
   static auto& t_solve = *TimeMonitor::getNewTimer("emcontact: linear solve");
   const auto map = disc_.owned_map();
-  Vector g(map), scale(map), R(map), dq(map), du(map);
+  Vector& g = *g_;
+  Vector scale(map), R(map), dq(map), du(map);
   NewtonResult res;
   double r0 = 0;
   const double eps = std::numeric_limits<double>::epsilon();
@@ -51,6 +53,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
     RCP<Matrix> Ar;
     {
       TimeMonitor tm(t_elim);
+      if (on_matrix_) on_matrix_(*A_);
       elim_.reduce_residual(g, R);
     }
     const double r = R.norm2();

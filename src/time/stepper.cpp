@@ -1,36 +1,113 @@
 #include "emcontact/time/stepper.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <set>
 
 #include "emcontact/error.hpp"
 
 namespace emc::time {
 
-Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, State& state)
+Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Elimination& elim,
+                 std::vector<GO> fixed, contact::Contact* contact, State& state)
     : newton_(newton),
+      elim_(elim),
+      fixed_(std::move(fixed)),
+      contact_(contact && !contact->empty() ? contact : nullptr),
       s_(state),
       dt_(time.get<double>("dt")),
       end_(time.get<double>("end")),
       max_cuts_(time.get<int>("max step cuts")),
       grow_after_(time.get<int>("grow after")) {
   if (s_.dt <= 0) s_.dt = dt_;
+  elim_.set_constraints(fixed_, {}, {});
 }
 
 bool Stepper::finished() const { return s_.t >= end_ - 1e-9 * dt_; }
 
+// ALGORITHM.md §3: rebuild P (and the beta hook) only when the active set changes.
+void Stepper::apply(const std::vector<contact::Active>& active) {
+  if (!contact_) return;
+  std::vector<std::array<double, 4>> key;
+  for (const auto& a : active) key.push_back({double(a.slave), double(a.facet), a.xi[0], a.xi[1]});
+  if (key == applied_) return;
+  std::vector<linalg::PRow> rows;
+  std::vector<GO> dummies;
+  contact_->constraint_rows(active, rows, dummies);
+  elim_.set_constraints(fixed_, rows, {});
+  contact::Contact* c = contact_;
+  linalg::Elimination* e = &elim_;
+  newton_.on_matrix([c, e, dummies](const Matrix& A) { e->set_dummy_values(c->dummy_values(A, dummies)); });
+  applied_ = std::move(key);
+}
+
+// One step of size h with the active-set loop of ALGORITHM.md §6; false if Newton failed.
+bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
+  const Vector& u0 = *s_.u;
+  std::vector<contact::Active> trial = s_.active;
+  std::set<int> released, pinned;
+  rep.contact = contact::StepContactStats{};
+  std::vector<double> fN;
+  for (int rep_no = 0;; ++rep_no) {
+    apply(trial);
+    u1.assign(u0);  // u_{n+1}^0 = u_n satisfies every constraint (§1)
+    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1);
+    rep.newton_iterations += nr.iterations;
+    rep.linear_iterations += nr.linear_iterations;
+    if (!nr.converged) {
+      rep.last_failure = nr.failure;
+      return false;
+    }
+    if (!contact_) return true;
+    const auto x0 = contact::positions(contact_->disc_model(), contact_->replicate(u0));
+    const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
+    const auto fresh = contact_->detect(x0, x1, trial);
+    fN = contact_->normal_forces(newton_.last_residual(), x0, x1, trial);
+    std::vector<contact::Active> next;
+    int n_release = 0;
+    for (std::size_t k = 0; k < trial.size(); ++k) {
+      const int s = trial[k].slave;
+      if (fN[k] < 0 && !pinned.count(s)) {  // §6.4: tensile -> release and solve again
+        released.insert(s);
+        ++n_release;
+      } else {
+        next.push_back(trial[k]);
+      }
+    }
+    for (const auto& a : fresh) {
+      if (released.count(a.slave)) {  // released in this step and penetrating again: keep it
+        pinned.insert(a.slave);
+        ++rep.contact.reactivated;
+      }
+      next.push_back(a);
+    }
+    const int changes = contact_->global_count(static_cast<int>(fresh.size()) + n_release);
+    if (changes == 0) break;
+    std::sort(next.begin(), next.end());
+    trial = std::move(next);
+    ++rep.contact.resolves;
+    fN.clear();
+  }
+  // §6.5: accept; nodes still in tension (only pinned ones can be) leave for the next step
+  std::vector<contact::Active> keep;
+  for (std::size_t k = 0; k < trial.size(); ++k)
+    if (fN[k] >= 0) keep.push_back(trial[k]);
+  const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
+  rep.contact.active = contact_->global_count(static_cast<int>(trial.size()));
+  rep.contact.reactivated = contact_->global_count(rep.contact.reactivated);
+  contact_->gap_range(x1, trial, rep.contact.gap_min, rep.contact.gap_max);
+  s_.active = std::move(keep);
+  return true;
+}
+
 StepReport Stepper::advance() {
   StepReport rep;
   const Vector& u0 = *s_.u;
-  const Vector& V0 = *s_.V;
   Vector u1(u0.getMap());
   for (;;) {
     const double h = std::min(s_.dt, end_ - s_.t);
-    u1.assign(u0);  // u_{n+1}^0 = u_n (ALGORITHM.md §1)
-    const NewtonResult nr = newton_.solve(u0, V0, h, u1);
-    rep.newton_iterations += nr.iterations;
-    rep.linear_iterations += nr.linear_iterations;
-    if (nr.converged) {
+    if (solve_step(h, u1, rep)) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n
       s_.V->update(2.0 / h, u1, -2.0 / h, u0, -1.0);
       s_.u->assign(u1);
@@ -43,7 +120,6 @@ StepReport Stepper::advance() {
       }
       return rep;
     }
-    rep.last_failure = nr.failure;
     ++rep.cuts;
     if (s_.dt < dt_ / std::ldexp(1.0, max_cuts_) * 1.5) {
       char buf[256];
@@ -51,7 +127,7 @@ StepReport Stepper::advance() {
                     "step %ld at t = %.6g could not be solved even with dt = %.3g (%d halvings "
                     "of dt = %.3g, Time/max step cuts): ",
                     s_.step + 1, s_.t, s_.dt, max_cuts_, dt_);
-      throw RunError(buf + nr.failure);
+      throw RunError(buf + rep.last_failure);
     }
     s_.dt /= 2;
     s_.good_steps = 0;

@@ -19,6 +19,10 @@ struct Body {
   double young = 0, poisson = 0, density = 0;
   std::array<double, 3> velocity{}, angular_velocity{};
   mesh::BodyMesh mesh;  ///< the body's own mesh (local node numbers), for its named surfaces
+  /// A rigid surface body (no tets): its nodes are not unknowns; they live in Model::rigid_X
+  /// from rigid_begin on, fixed in space (ALGORITHM.md §3: a master whose motion is prescribed).
+  bool rigid = false;
+  int rigid_begin = 0;
 };
 
 struct Model {
@@ -27,6 +31,7 @@ struct Model {
   std::vector<int> body_of_tet;   ///< body index per tet
   std::vector<Body> bodies;
   std::vector<char> fixed;        ///< per global node: displacement prescribed to zero
+  std::vector<double> rigid_X;    ///< nodes of the rigid surface bodies, 3 each
   std::array<double, 3> gravity{};
   kernels::Integrator integrator = kernels::Integrator::energy_momentum;
 

@@ -28,6 +28,10 @@ class Elimination {
   void set_constraints(const std::vector<GO>& fixed, const std::vector<PRow>& rows,
                        const std::vector<std::pair<GO, double>>& dummy_diag);
 
+  /// Replaces the values of D (fixed dofs keep 1); P is unchanged. For the beta of eq. 44,
+  /// which follows the Newton matrix while the active set, hence P, stays the same.
+  void set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag);
+
   /// True when P is the identity on every rank (nothing constrained): reduce/expand copy.
   bool identity() const { return identity_; }
   Teuchos::RCP<const Matrix> P() const { return P_; }
@@ -42,6 +46,7 @@ class Elimination {
  private:
   Teuchos::RCP<const Map> owned_;
   Teuchos::RCP<Matrix> P_, D_;
+  std::vector<GO> fixed_;
   bool identity_ = true;
 };
 

@@ -1,5 +1,6 @@
 #pragma once
-// Built-in meshes (through Gmsh's C++ API, OpenCASCADE kernel) and the Gmsh .msh reader.
+// Built-in meshes (through Gmsh's C++ API, OpenCASCADE kernel), the rigid surfaces (`plane`,
+// `rectangle`) and the Gmsh .msh reader.
 #include <Teuchos_ParameterList.hpp>
 
 #include "emcontact/mesh/body_mesh.hpp"
@@ -9,6 +10,10 @@ namespace emc::mesh {
 /// Valid parameters of a body's `Mesh` sublist (with defaults, validators, doc strings).
 Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters();
 
+/// True for the `type` values that always give a rigid surface (no tets): "plane", "rectangle".
+/// (A "file" without tetrahedra is one too, which is only known once it is read.)
+bool is_rigid_surface_type(const std::string& type);
+
 /// Builds the mesh a validated `Mesh` sublist describes. `input_dir` resolves relative file
 /// names; `where` (e.g. "input.xml: Bodies/ball/Mesh") prefixes every error. Call on one rank
 /// (Gmsh is not MPI-aware); the caller broadcasts the result.
@@ -17,6 +22,9 @@ BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string
 
 /// Reads a Gmsh .msh file (format 4.1) through Gmsh's API: all 4-node tets (or those of the
 /// physical volume `volume` if not empty) and every physical surface as a named surface.
+/// A file with no tets at all but 3-node triangles (and `volume` empty) is a rigid surface:
+/// the triangles' nodes, no tets, every physical surface by name plus `surface` (all
+/// triangles), oriented as in the file.
 BodyMesh read_msh(const std::string& file, const std::string& volume, const std::string& where);
 
 }  // namespace emc::mesh

@@ -5,6 +5,7 @@
 // bounds the round-off of g's four terms. No step is ever accepted unconverged.
 #include <Teuchos_ParameterList.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,12 +37,19 @@ class Newton {
   /// Solves eq. 20 for u1 given (u0, V0) at t_n; u1 holds the start guess on entry.
   NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1);
 
+  /// Called with the assembled Newton matrix before each reduction (contact sets beta).
+  void on_matrix(std::function<void(const Matrix&)> f) { on_matrix_ = std::move(f); }
+  /// The contactless residual g of eq. 20 at the last iterate (contact forces, §4).
+  const Vector& last_residual() const { return *g_; }
+
  private:
   const fem::Discretization& disc_;
   linalg::Elimination& elim_;
   linalg::LinearSolver& solver_;
   NewtonOptions opt_;
   Teuchos::RCP<FEMatrix> A_;  ///< built once on the FE graph, refilled every iteration
+  Teuchos::RCP<Vector> g_;
+  std::function<void(const Matrix&)> on_matrix_;
 };
 
 }  // namespace emc::time

@@ -1,11 +1,15 @@
 #pragma once
 // Time stepping with the energy-momentum (or mid-point) scheme (ALGORITHM.md §1, eq. 19):
-// V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n. A step whose Newton fails is retried with dt/2 (up to
-// `max step cuts` times); dt doubles back toward the nominal dt after `grow after` good steps.
+// V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n, with the active-set loop of contact (§6) around
+// Newton. A step whose Newton fails is retried with dt/2 (up to `max step cuts` times); dt
+// doubles back toward the nominal dt after `grow after` good steps.
 #include <Teuchos_ParameterList.hpp>
 
+#include <array>
 #include <string>
+#include <vector>
 
+#include "emcontact/contact/contact.hpp"
 #include "emcontact/time/newton.hpp"
 
 namespace emc::time {
@@ -17,6 +21,7 @@ struct State {
   long step = 0;
   double dt = 0;       ///< current step size (may be below the nominal one after cuts)
   int good_steps = 0;  ///< accepted steps since the last change of dt
+  std::vector<contact::Active> active;  ///< my active slave nodes at t_n (§6.1)
 };
 
 struct StepReport {
@@ -25,12 +30,15 @@ struct StepReport {
   int linear_iterations = 0;
   int cuts = 0;
   std::string last_failure;
+  contact::StepContactStats contact;
 };
 
 class Stepper {
  public:
-  /// `time` is the validated `Time` sublist.
-  Stepper(const Teuchos::ParameterList& time, Newton& newton, State& state);
+  /// `time` is the validated `Time` sublist; `fixed` the owned Dirichlet dofs; `contact` may
+  /// be null (no contact pairs).
+  Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Elimination& elim,
+          std::vector<GO> fixed, contact::Contact* contact, State& state);
 
   bool finished() const;
   /// Advances to the next accepted step. Throws RunError if dt cannot be cut any further.
@@ -40,9 +48,16 @@ class Stepper {
 
  private:
   Newton& newton_;
+  linalg::Elimination& elim_;
+  std::vector<GO> fixed_;
+  contact::Contact* contact_;
   State& s_;
   double dt_, end_;
   int max_cuts_, grow_after_;
+  std::vector<std::array<double, 4>> applied_;  ///< (slave, facet, xi) P was built for
+
+  void apply(const std::vector<contact::Active>& active);
+  bool solve_step(double h, Vector& u1, StepReport& rep);
 };
 
 }  // namespace emc::time

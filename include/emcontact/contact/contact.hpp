@@ -1,0 +1,75 @@
+#pragma once
+// The active set of contact (ALGORITHM.md §4, §6) and the rows it adds to the elimination
+// operator P (§3). Each rank handles the slave nodes it owns; positions are replicated.
+#include <array>
+#include <vector>
+
+#include "emcontact/contact/pairs.hpp"
+#include "emcontact/fem/discretization.hpp"
+#include "emcontact/linalg/elimination.hpp"
+
+namespace emc::contact {
+
+/// An active slave node: its pair, master facet and the frozen xi (full stick, §4).
+struct Active {
+  int slave = -1;
+  int pair = -1;
+  int facet = -1;
+  double xi[2] = {0, 0};
+  bool operator<(const Active& o) const { return slave < o.slave; }
+};
+
+struct StepContactStats {
+  int active = 0;          ///< global number of active slave nodes at the accepted step
+  int resolves = 0;        ///< extra solves of the step for activation / release
+  int reactivated = 0;     ///< nodes released and activated again within the step (kept)
+  double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active nodes (global)
+};
+
+class Contact {
+ public:
+  Contact(const fem::Discretization& disc, std::vector<Pair> pairs);
+
+  bool empty() const { return pairs_.empty(); }
+  const fem::Model& disc_model() const { return disc_.model(); }
+  const std::vector<Pair>& pairs() const { return pairs_; }
+
+  /// Every node's displacement on every rank (3 N), from an owned vector.
+  std::vector<double> replicate(const Vector& u) const;
+
+  /// §6.3: my inactive slave nodes whose end-of-step position penetrates their master
+  /// (-dmax < g_N < 0), with the facet and xi of their CPP at t_n (§4). x0, x1: positions.
+  std::vector<Active> detect(const std::vector<double>& x0, const std::vector<double>& x1,
+                             const std::vector<Active>& active) const;
+
+  /// f_N = g_s . n_{n+1/2} of each active entry (§4); g is the contactless residual.
+  std::vector<double> normal_forces(const Vector& g, const std::vector<double>& x0,
+                                    const std::vector<double>& x1,
+                                    const std::vector<Active>& active) const;
+
+  /// Rows of P for the active stick slaves (du_s = N du_m, §3-§4) and their dummy dofs;
+  /// columns of fixed master dofs are dropped (their column of P is zero).
+  void constraint_rows(const std::vector<Active>& active, std::vector<linalg::PRow>& rows,
+                       std::vector<GO>& dummies) const;
+
+  /// beta = tr(A_ss)/3 for each dummy's slave (eq. 44), from A's diagonal.
+  std::vector<std::pair<GO, double>> dummy_values(const Matrix& A,
+                                                  const std::vector<GO>& dummies) const;
+
+  /// g_N at n+1 of the active entries on their facet's plane: global min and max.
+  void gap_range(const std::vector<double>& x1, const std::vector<Active>& active, double& lo,
+                 double& hi) const;
+
+  int global_count(int local) const;
+
+ private:
+  const fem::Discretization& disc_;
+  std::vector<Pair> pairs_;
+  std::vector<std::vector<int>> my_slaves_;  ///< per pair: the slave nodes this rank owns
+  Teuchos::RCP<const Map> all_;              ///< every dof on every rank
+  Teuchos::RCP<const Import> to_all_;
+
+  void facet_coords(const Active& a, const std::vector<double>& x, double xm[3][3]) const;
+};
+
+}  // namespace emc::contact

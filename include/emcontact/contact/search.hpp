@@ -1,0 +1,45 @@
+#pragma once
+// Contact search (ALGORITHM.md §2): a uniform grid of the master facets' bounding boxes
+// (expanded by a margin), rebuilt from the current positions whenever it is needed, and the
+// projection of a point on the closest valid facet among the candidates of its cell.
+#include <Kokkos_Core.hpp>
+
+#include <array>
+#include <vector>
+
+namespace emc::contact {
+
+struct Hit {
+  int facet = -1;
+  double xi[2] = {0, 0};
+  double gap = 0;
+  bool inside = false;  ///< CPP inside the facet (up to the tolerance asked)
+};
+
+class FacetGrid {
+ public:
+  /// Bins the facets (geometry node ids into x, 3 per node) with their boxes grown by margin.
+  FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
+            double margin);
+
+  /// The closest valid facet to y (§2): among the candidates whose CPP lies inside up to
+  /// 1e-9, the smallest |g_N|, ties to the lowest facet id. If `current` >= 0 it is kept while
+  /// its CPP is inside up to `hyst`. If none is valid and `current` >= 0, the candidate least
+  /// outside is returned with inside = (outside <= hyst); otherwise facet = -1.
+  Hit locate(const double y[3], int current = -1, double hyst = 0) const;
+
+  std::size_t num_cells() const { return cell_start_.extent(0) - 1; }
+
+ private:
+  const std::vector<std::array<int, 3>>& facets_;
+  const std::vector<double>& x_;
+  double lo_[3], h_;
+  int dims_[3];
+  Kokkos::View<int*, Kokkos::HostSpace> cell_start_, cell_facets_;
+  std::vector<double> box_;  ///< 6 per facet: grown bounding box
+
+  int cell_of(const double y[3], int d[3]) const;
+  bool cpp(int f, const double y[3], Hit& h) const;
+};
+
+}  // namespace emc::contact

@@ -1,0 +1,117 @@
+#include "emcontact/contact/pairs.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "emcontact/error.hpp"
+
+namespace emc::contact {
+
+namespace {
+
+struct SurfaceRef {
+  int body = -1;
+  std::string surface;  ///< empty: the whole boundary
+};
+
+SurfaceRef parse_ref(const fem::Model& m, const std::string& ref, const std::string& where) {
+  SurfaceRef r;
+  const auto slash = ref.find('/');
+  const std::string body = ref.substr(0, slash);
+  if (slash != std::string::npos) r.surface = ref.substr(slash + 1);
+  std::string names;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    names += (b ? ", " : "") + m.bodies[b].name;
+    if (m.bodies[b].name == body) r.body = static_cast<int>(b);
+  }
+  if (r.body < 0)
+    throw InputError(where + ": no body named \"" + body + "\"; bodies: " + names);
+  return r;
+}
+
+/// Triangles (body-local node ids) of a body's surface: a named surface, or for a whole
+/// deformable body its boundary, for a rigid body all its triangles.
+std::vector<std::array<int, 3>> surface_triangles(const fem::Body& b, const std::string& name,
+                                                  const std::string& where) {
+  if (name.empty()) {
+    if (!b.rigid) return mesh::boundary_triangles(b.mesh);
+    std::vector<std::array<int, 3>> all;
+    for (const auto& [n, tris] : b.mesh.surfaces) all.insert(all.end(), tris.begin(), tris.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    return all;
+  }
+  auto it = b.mesh.surfaces.find(name);
+  if (it == b.mesh.surfaces.end()) {
+    std::string names;
+    for (const auto& [n, t] : b.mesh.surfaces) names += (names.empty() ? "" : ", ") + n;
+    throw InputError(where + ": body \"" + b.name + "\" has no surface \"" + name +
+                     "\"; its surfaces: " + names);
+  }
+  return it->second;
+}
+
+/// Half the mean edge length of the facets (reference configuration).
+double half_mean_edge(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x) {
+  double sum = 0;
+  for (const auto& f : facets)
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k], b = f[(k + 1) % 3];
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += std::pow(x[3 * a + i] - x[3 * b + i], 2);
+      sum += std::sqrt(d2);
+    }
+  return facets.empty() ? 0 : 0.5 * sum / (3.0 * facets.size());
+}
+
+}  // namespace
+
+std::vector<double> positions(const fem::Model& model, const std::vector<double>& u) {
+  std::vector<double> x(model.X.size() + model.rigid_X.size());
+  for (std::size_t k = 0; k < model.X.size(); ++k) x[k] = model.X[k] + (u.empty() ? 0.0 : u[k]);
+  std::copy(model.rigid_X.begin(), model.rigid_X.end(), x.begin() + model.X.size());
+  return x;
+}
+
+std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::Model& model,
+                              const std::string& file) {
+  std::vector<Pair> pairs;
+  if (!params.isSublist("Contact")) return pairs;
+  const auto& cl = params.sublist("Contact");
+  const auto x0 = positions(model, {});
+  for (auto it = cl.begin(); it != cl.end(); ++it) {
+    const std::string name = cl.name(it);
+    if (!cl.isSublist(name)) continue;
+    const auto& c = cl.sublist(name);
+    const std::string where = file + ": Contact/" + name;
+    Pair p;
+    p.name = name;
+    p.kind = c.get<std::string>("type") == "frictionless" ? Kind::frictionless : Kind::full_stick;
+    const SurfaceRef s = parse_ref(model, c.get<std::string>("slave"), where + "/slave");
+    const SurfaceRef m = parse_ref(model, c.get<std::string>("master"), where + "/master");
+    const fem::Body& sb = model.bodies[s.body];
+    const fem::Body& mb = model.bodies[m.body];
+    if (sb.rigid)
+      throw InputError(where + "/slave: \"" + sb.name +
+                       "\" is a rigid surface; a slave must be a deformable body (a rigid "
+                       "surface is always the master)");
+    if (s.body == m.body)
+      throw InputError(where + ": slave and master are the same body \"" + sb.name +
+                       "\"; self-contact is not supported");
+    for (const auto& t : surface_triangles(sb, s.surface, where + "/slave"))
+      for (int a : t) p.slaves.push_back(sb.node_begin + a);
+    std::sort(p.slaves.begin(), p.slaves.end());
+    p.slaves.erase(std::unique(p.slaves.begin(), p.slaves.end()), p.slaves.end());
+    const int off = mb.rigid ? model.num_nodes() + mb.rigid_begin : mb.node_begin;
+    for (const auto& t : surface_triangles(mb, m.surface, where + "/master"))
+      p.facets.push_back({off + t[0], off + t[1], off + t[2]});
+    if (p.facets.empty()) throw InputError(where + "/master: the surface has no triangles");
+    p.master_body = m.body;
+    p.dmax = c.get<double>("max penetration");
+    if (p.dmax <= 0) p.dmax = half_mean_edge(p.facets, x0);
+    pairs.push_back(std::move(p));
+  }
+  return pairs;
+}
+
+}  // namespace emc::contact

@@ -1,0 +1,119 @@
+#include "emcontact/contact/search.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/facet.hpp"
+
+namespace emc::contact {
+
+FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
+                     double margin)
+    : facets_(facets), x_(x) {
+  const int nf = static_cast<int>(facets.size());
+  box_.resize(6 * nf);
+  double hi[3] = {-1e300, -1e300, -1e300}, ext_sum = 0;
+  for (int i = 0; i < 3; ++i) lo_[i] = 1e300;
+  for (int f = 0; f < nf; ++f) {
+    double* b = &box_[6 * f];
+    for (int i = 0; i < 3; ++i) {
+      b[i] = 1e300;
+      b[3 + i] = -1e300;
+      for (int a : facets[f]) {
+        b[i] = std::min(b[i], x[3 * a + i]);
+        b[3 + i] = std::max(b[3 + i], x[3 * a + i]);
+      }
+      ext_sum += b[3 + i] - b[i];
+      b[i] -= margin;
+      b[3 + i] += margin;
+      lo_[i] = std::min(lo_[i], b[i]);
+      hi[i] = std::max(hi[i], b[3 + i]);
+    }
+  }
+  // cells about the mean facet extent, at most 128 per direction
+  double h = nf ? std::max(ext_sum / (3.0 * nf), 1e-12) + 2 * margin : 1.0;
+  for (int i = 0; i < 3; ++i) h = std::max(h, (hi[i] - lo_[i]) / 128.0);
+  h_ = h;
+  for (int i = 0; i < 3; ++i) dims_[i] = nf ? std::max(1, int(std::ceil((hi[i] - lo_[i]) / h))) : 1;
+  const std::size_t ncell = std::size_t(dims_[0]) * dims_[1] * dims_[2];
+  // CSR: count, prefix sum, fill in facet order (so every cell's list is sorted by facet id)
+  std::vector<int> count(ncell + 1, 0);
+  auto range = [&](int f, int i, int& a, int& b) {
+    a = std::clamp(int(std::floor((box_[6 * f + i] - lo_[i]) / h_)), 0, dims_[i] - 1);
+    b = std::clamp(int(std::floor((box_[6 * f + 3 + i] - lo_[i]) / h_)), 0, dims_[i] - 1);
+  };
+  auto visit = [&](int f, auto&& fn) {
+    int a[3], b[3];
+    for (int i = 0; i < 3; ++i) range(f, i, a[i], b[i]);
+    for (int k = a[2]; k <= b[2]; ++k)
+      for (int j = a[1]; j <= b[1]; ++j)
+        for (int i = a[0]; i <= b[0]; ++i) fn((std::size_t(k) * dims_[1] + j) * dims_[0] + i);
+  };
+  for (int f = 0; f < nf; ++f) visit(f, [&](std::size_t c) { ++count[c + 1]; });
+  for (std::size_t c = 0; c < ncell; ++c) count[c + 1] += count[c];
+  cell_start_ = Kokkos::View<int*, Kokkos::HostSpace>("emc::grid_start", ncell + 1);
+  cell_facets_ = Kokkos::View<int*, Kokkos::HostSpace>("emc::grid_facets", count[ncell]);
+  for (std::size_t c = 0; c <= ncell; ++c) cell_start_(c) = count[c];
+  std::vector<int> fill(count.begin(), count.end() - 1);
+  for (int f = 0; f < nf; ++f) visit(f, [&](std::size_t c) { cell_facets_(fill[c]++) = f; });
+}
+
+int FacetGrid::cell_of(const double y[3], int d[3]) const {
+  for (int i = 0; i < 3; ++i) {
+    const double t = std::floor((y[i] - lo_[i]) / h_);
+    if (!(t >= 0 && t < dims_[i])) return -1;
+    d[i] = int(t);
+  }
+  return (d[2] * dims_[1] + d[1]) * dims_[0] + d[0];
+}
+
+bool FacetGrid::cpp(int f, const double y[3], Hit& h) const {
+  double xm[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < 3; ++i) xm[a][i] = x_[3 * facets_[f][a] + i];
+  h.facet = f;
+  return kernels::facet_cpp(y, xm, h.xi, h.gap);
+}
+
+// ALGORITHM.md §2 (choice of facet) and §5 step 2 (keep the current facet up to hyst).
+Hit FacetGrid::locate(const double y[3], int current, double hyst) const {
+  const double tol = 1e-9;
+  if (current >= 0) {
+    Hit h;
+    if (cpp(current, y, h) && kernels::facet_outside(h.xi) <= std::max(hyst, tol)) {
+      h.inside = true;
+      return h;
+    }
+  }
+  Hit best, least;
+  double least_out = 1e300;
+  int d[3];
+  const int c = cell_of(y, d);
+  if (c >= 0)
+    for (int k = cell_start_(c); k < cell_start_(c + 1); ++k) {
+      const int f = cell_facets_(k);
+      const double* b = &box_[6 * f];
+      if (y[0] < b[0] || y[0] > b[3] || y[1] < b[1] || y[1] > b[4] || y[2] < b[2] || y[2] > b[5])
+        continue;
+      Hit h;
+      if (!cpp(f, y, h)) continue;
+      const double out = kernels::facet_outside(h.xi);
+      if (out <= tol && (best.facet < 0 || std::fabs(h.gap) < std::fabs(best.gap) - 1e-14 * h_)) {
+        best = h;
+        best.inside = true;
+      }
+      if (out < least_out) {
+        least_out = out;
+        least = h;
+      }
+    }
+  if (best.facet >= 0 || current < 0) return best;
+  if (least.facet < 0) {  // nothing near: keep the current facet, extrapolated
+    cpp(current, y, least);
+    least_out = kernels::facet_outside(least.xi);
+  }
+  least.inside = least_out <= hyst;
+  return least;
+}
+
+}  // namespace emc::contact
