@@ -295,12 +295,13 @@ BodyMesh rectangle_mesh(const Teuchos::ParameterList& p, double size, const std:
   const int q1 = (flat + 1) % 3, q2 = (flat + 2) % 3;  // e_q1 x e_q2 = e_flat
   if (!(len > 0.0) || !std::isfinite(len) || std::abs(axis[q1]) > 1e-12 * len ||
       std::abs(axis[q2]) > 1e-12 * len) {
-    Vec3 e{0.0, 0.0, 0.0};
-    e[flat] = 1.0;
+    Vec3 plus{0.0, 0.0, 0.0}, minus{0.0, 0.0, 0.0};
+    plus[flat] = 1.0;
+    minus[flat] = -1.0;
     throw InputError(where + ": parameter 'axis' " + str(axis) +
                      " must be parallel to the rectangle's normal direction " + axes[flat] +
-                     " (the component where 'upper corner' equals 'lower corner'): " + str(e) +
-                     " or " + str(scaled(-1.0, e)));
+                     " (the component where 'upper corner' equals 'lower corner'): " +
+                     str(plus) + " or " + str(minus));
   }
   Vec3 a{0.0, 0.0, 0.0}, b{0.0, 0.0, 0.0};
   a[q1] = extent[q1];

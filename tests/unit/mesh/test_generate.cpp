@@ -95,8 +95,8 @@ TEST(MeshParameters, NamesAndDefaults) {
   std::set<std::string> names;
   for (auto it = pl->begin(); it != pl->end(); ++it) names.insert(pl->name(it));
   EXPECT_EQ(names, (std::set<std::string>{"type", "file", "volume", "size", "lower corner",
-                                          "upper corner", "center", "axis", "height", "radius",
-                                          "inner radius", "outer radius"}));
+                                          "upper corner", "center", "axis", "half width", "height",
+                                          "radius", "inner radius", "outer radius"}));
   EXPECT_EQ(pl->get<std::string>("type"), "box");
   EXPECT_EQ(pl->get<std::string>("file"), "");
   EXPECT_EQ(pl->get<std::string>("volume"), "");
@@ -105,6 +105,7 @@ TEST(MeshParameters, NamesAndDefaults) {
   EXPECT_EQ(pl->get<Teuchos::Array<double>>("upper corner"), arr(1, 1, 1));
   EXPECT_EQ(pl->get<Teuchos::Array<double>>("center"), arr(0, 0, 0));
   EXPECT_EQ(pl->get<Teuchos::Array<double>>("axis"), arr(0, 0, 1));
+  EXPECT_EQ(pl->get<double>("half width"), 1.0);
   EXPECT_EQ(pl->get<double>("height"), 0.1);
   EXPECT_EQ(pl->get<double>("radius"), 0.1);
   EXPECT_EQ(pl->get<double>("inner radius"), 0.05);

@@ -202,14 +202,18 @@ TEST(ReadMsh, BrokenFileGivesGmshMessageAndLaterReadsStillWork) {
   EXPECT_EQ(read_msh(dir.file("good.msh"), "", "test").num_tets(), 2);
 }
 
-TEST(ReadMsh, FileWithoutTetsIsRefused) {
+TEST(ReadMsh, FileWithoutTetsIsARigidSurfaceUnlessAVolumeIsAsked) {
   ScratchDir dir("no_tets");
   std::string text = two_tet_msh("3 1 3 2 5");
   text.replace(text.find("$Elements"), std::string::npos,
                "$Elements\n1 1 1 1\n2 1 2 1\n1 1 3 4\n$EndElements\n");
   write_text(dir.file("flat.msh"), text);
-  const std::string msg = read_error(dir.file("flat.msh"));
-  EXPECT_NE(msg.find("no 4-node tetrahedra"), std::string::npos) << msg;
+  const BodyMesh m = read_msh(dir.file("flat.msh"), "", "test");  // triangles only: rigid
+  EXPECT_TRUE(is_rigid(m));
+  EXPECT_EQ(m.num_nodes(), 3);
+  EXPECT_EQ(m.surfaces.at("side"), (std::vector<Tri>{{0, 1, 2}}));  // as written, not re-oriented
+  const std::string msg = read_error(dir.file("flat.msh"), "body");
+  EXPECT_NE(msg.find("no 4-node tetrahedra in physical volume 'body'"), std::string::npos) << msg;
 }
 
 TEST(ReadMsh, ExampleBall) {
