@@ -110,6 +110,22 @@ struct Writers {
     f.displacement = (*dofs)(*s.u);
     f.velocity = (*dofs)(*s.V);
     f.von_mises = (*tets)(*disc.von_mises(*s.u));
+    // per node contact status and normal force, packed in the x and y dofs of a dof vector
+    Vector c(disc.owned_map());
+    {
+      auto h = c.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      Kokkos::deep_copy(h, 0.0);
+      for (std::size_t k = 0; k < s.active.size(); ++k) {
+        const LO l = disc.owned_map()->getLocalElement(fem::dof_gid(s.active[k].slave, 0));
+        h(l, 0) = 1.0;
+        h(l + 1, 0) = k < s.normal_force.size() ? s.normal_force[k] : 0.0;
+      }
+    }
+    const auto packed = (*dofs)(c);
+    for (std::size_t n = 0; 3 * n < packed.size(); ++n) {
+      f.contact_status.push_back(packed[3 * n]);
+      f.normal_force.push_back(packed[3 * n + 1]);
+    }
     if (fields) fields->write(f);
   }
 };

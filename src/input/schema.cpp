@@ -1,4 +1,5 @@
 // The whole input schema, assembled from the modules' parameter declarations.
+#include "emcontact/contact/parameters.hpp"
 #include "emcontact/fem/parameters.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/input.hpp"
@@ -29,13 +30,23 @@ std::vector<Section> sections() {
   return {
       {"Time", "Time stepping.", emc::time::valid_parameters(), ""},
       {"Bodies",
-       "One sublist per body; its name (`<body>` below) is free. At least one body is required.",
+       "One sublist per body; its name (`<body>` below) is free. At least one body is required. "
+       "A body whose `Mesh` has no tetrahedra (`type` `plane` or `rectangle`, or a `file` with "
+       "triangles only) is a rigid surface: it can only be the master of a contact pair, it "
+       "needs no `Material`, and it does not move (its motion is fixed for now: a non-zero "
+       "`Initial` velocity or angular velocity is refused).",
        body_template(), "<body>"},
       {"Loads", "External loads.", emc::fem::valid_load_parameters(), ""},
       {"Dirichlet",
        "Optional: one sublist per fixed surface; its name (`<condition>` below) is free. The "
        "displacement of the surface's nodes is fixed to zero.",
        emc::fem::valid_dirichlet_parameters(), "<condition>"},
+      {"Contact",
+       "Optional: one sublist per contact pair; its name (`<pair>` below) is free. The nodes of "
+       "the slave surface (of a deformable body) may not penetrate the facets of the master "
+       "surface (of another body, deformable or rigid); see \"Choosing slave and master\" "
+       "above.",
+       emc::contact::valid_pair_parameters(), "<pair>"},
       {"Solver", "Newton and linear solvers.", emc::linalg::valid_parameters(), ""},
       {"Output", "What is written and where.", emc::output::valid_parameters(), ""},
   };

@@ -300,8 +300,8 @@ BodyMesh rectangle_mesh(const Teuchos::ParameterList& p, double size, const std:
     minus[flat] = -1.0;
     throw InputError(where + ": parameter 'axis' " + str(axis) +
                      " must be parallel to the rectangle's normal direction " + axes[flat] +
-                     " (the component where 'upper corner' equals 'lower corner'): " +
-                     str(plus) + " or " + str(minus));
+                     " (the component where 'upper corner' equals 'lower corner'): " + str(plus) +
+                     " or " + str(minus));
   }
   Vec3 a{0.0, 0.0, 0.0}, b{0.0, 0.0, 0.0};
   a[q1] = extent[q1];

@@ -35,8 +35,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
       "Shape of the body: a built-in Gmsh mesh ('box', 'cylinder', 'hollow cylinder', "
       "'spherical shell'), a rigid surface ('plane', 'rectangle': triangles only, fixed in "
       "space) or a Gmsh .msh 4.1 file ('file')",
-      Teuchos::tuple<std::string>("box", "cylinder", "hollow cylinder", "spherical shell",
-                                  "plane", "rectangle", "file"),
+      Teuchos::tuple<std::string>("box", "cylinder", "hollow cylinder", "spherical shell", "plane",
+                                  "rectangle", "file"),
       Teuchos::tuple<std::string>(
           "axis-aligned box between 'lower corner' and 'upper corner'; surfaces xmin, xmax, "
           "ymin, ymax, zmin, zmax",

@@ -91,8 +91,12 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   }
   // §6.5: accept; nodes still in tension (only pinned ones can be) leave for the next step
   std::vector<contact::Active> keep;
+  s_.normal_force.clear();
   for (std::size_t k = 0; k < trial.size(); ++k)
-    if (fN[k] >= 0) keep.push_back(trial[k]);
+    if (fN[k] >= 0) {
+      keep.push_back(trial[k]);
+      s_.normal_force.push_back(fN[k]);
+    }
   const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
   rep.contact.active = contact_->global_count(static_cast<int>(trial.size()));
   rep.contact.reactivated = contact_->global_count(rep.contact.reactivated);

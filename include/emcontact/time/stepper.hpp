@@ -22,6 +22,7 @@ struct State {
   double dt = 0;       ///< current step size (may be below the nominal one after cuts)
   int good_steps = 0;  ///< accepted steps since the last change of dt
   std::vector<contact::Active> active;  ///< my active slave nodes at t_n (§6.1)
+  std::vector<double> normal_force;     ///< their f_N at the accepted step (§4)
 };
 
 struct StepReport {

@@ -1,0 +1,18 @@
+#pragma once
+// The `Contact` part of the input: declared here, validated by the input module (which also
+// cross-checks the body names, see emc::input::read_input).
+#include <Teuchos_ParameterList.hpp>
+
+namespace emc::contact {
+
+/// Template of one `Contact/<pair>` sublist (a contact pair, user-named):
+/// - `slave` (string, required, default ""): a body name, or `body/surface` naming one of its
+///   named surfaces; a deformable body (with tets).
+/// - `master` (string, required, default ""): a body name or `body/surface`; deformable or a
+///   rigid surface body; not the slave's body.
+/// - `type` (string): "full stick" (default, integral value 0) or "frictionless" (1).
+/// - `max penetration` (double >= 0, default 0 = automatic: half the mean edge of the master's
+///   facets): a slave node is activated only while its penetration is below it.
+Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters();
+
+}  // namespace emc::contact

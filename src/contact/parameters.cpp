@@ -1,0 +1,38 @@
+// Schema of one contact pair (`Contact/<pair>`).
+#include "emcontact/contact/parameters.hpp"
+
+#include "emcontact/input/validators.hpp"
+
+namespace emc::contact {
+
+using namespace emc::input;
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("<pair>"));
+  pl->set("slave", std::string(""),
+          "Required: the slave surface, whose nodes are constrained: a body name (its whole "
+          "boundary) or body/surface with a named surface of that body (e.g. ball/outer). The "
+          "slave body must be deformable (a rigid surface is always the master).",
+          any_string());
+  pl->set("master", std::string(""),
+          "Required: the master surface, whose facets the slave nodes touch: a body name (the "
+          "boundary of a deformable body, all triangles of a rigid surface) or body/surface. "
+          "Not the slave's body (no self-contact).",
+          any_string());
+  pl->set("type", std::string("full stick"),
+          "Contact condition on an active slave node: full stick (it sticks to its point of the "
+          "master facet) or frictionless (it slides freely on the master; only its normal gap "
+          "is constrained).",
+          string_choice("type", {"full stick", "frictionless"},
+                        {"an active slave node sticks to its point of the master facet",
+                         "an active slave node slides freely on the master facet (only its "
+                         "normal gap is constrained)"}));
+  pl->set("max penetration", 0.0,
+          "Largest penetration [m] at which a slave node is caught by a master facet (a node "
+          "deeper than this, e.g. behind a thin master, is not activated); 0: automatic, half "
+          "the mean edge length of the master's facets.",
+          double_at_least(0.0));
+  return pl;
+}
+
+}  // namespace emc::contact
