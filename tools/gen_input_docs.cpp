@@ -20,7 +20,19 @@ line option `--set Section/Sub/name=value` changes a parameter (e.g. `--set Time
 `--set Bodies/block/Initial/velocity={1,0,0}`); the value is read with the parameter's type.
 Relative mesh file names are relative to the input file's directory. Examples in this
 directory: `tumbling_box.xml` (a free tumbling box) and `falling_box.xml` (the same box falling
-under gravity).
+under gravity); with contact: `ball.xml`, `three_disks.xml` and `hollow_cylinders.xml`.
+
+## Choosing slave and master
+
+Each contact pair (section `Contact`) constrains the nodes of its slave surface not to
+penetrate the facets of its master surface. Take as slave the finer, softer, smaller or curved
+surface (its nodes are the constrained ones), and as master the coarser, stiffer or flat one.
+A rigid surface (a body of `Mesh` `type` `plane` or `rectangle`, or a `.msh` file with
+triangles only) is always the master; its triangles are used as oriented (their normal points
+to the side contact happens on) and it does not move (its motion is fixed for now). A slave
+node is in contact with at most one master facet at a time. The rigid plane of the paper's
+examples is z = 0 with normal +z: `type` `plane`, `center` `{0, 0, 0}`, `axis` `{0, 0, 1}`
+(the defaults), with a `half width` that covers the bodies.
 
 )";
 

@@ -88,6 +88,9 @@ output::MonitorRow monitor_row(const fem::Discretization& disc, const time::Stat
     r.com[i] = m.mass > 0 ? m.moment[i] / m.mass : 0.0;
   }
   r.active_contacts = rep.contact.active;
+  r.gap_min = rep.contact.active ? rep.contact.gap_min : 0.0;
+  r.gap_max = rep.contact.active ? rep.contact.gap_max : 0.0;
+  r.contact_resolves = rep.contact.resolves;
   r.newton_iterations = rep.newton_iterations;
   r.dt = rep.dt;
   r.linear_iterations = rep.linear_iterations;

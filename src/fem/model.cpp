@@ -71,6 +71,12 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
     b.node_begin = b.node_end = m.num_nodes();
     b.tet_begin = b.tet_end = m.num_tets();
     if (b.mesh.tets.empty()) {  // a rigid surface body
+      for (double v : {b.velocity[0], b.velocity[1], b.velocity[2], b.angular_velocity[0],
+                       b.angular_velocity[1], b.angular_velocity[2]})
+        if (v != 0)
+          throw InputError(file + ": Bodies/" + name +
+                           "/Initial: a rigid surface (a mesh without tetrahedra) is fixed; "
+                           "allowed: zero velocity and angular velocity");
       b.rigid = true;
       b.rigid_begin = static_cast<int>(m.rigid_X.size() / 3);
       m.rigid_X.insert(m.rigid_X.end(), b.mesh.X.begin(), b.mesh.X.end());

@@ -57,7 +57,9 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
       Teuchos::tuple<int>(0, 1, 2, 3, 4, 5, 6), pl.get());
   pl->set("file", std::string(""),
           "Gmsh .msh 4.1 file (type 'file'), relative to the input file's directory; its "
-          "physical surfaces become the named surfaces");
+          "physical surfaces become the named surfaces. A file with triangles and no "
+          "tetrahedra is a rigid surface: its triangles are used as oriented in the file, and "
+          "the surface 'surface' holds all of them");
   pl->set("volume", std::string(""),
           "Physical volume of 'file' to use (type 'file'); empty: all 4-node tetrahedra (or, "
           "in a file without tetrahedra, all triangles: a rigid surface)");
@@ -79,7 +81,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
             "(not normalized, nonzero)");
   set_positive(*pl, "half width", 1.0,
                "Half the side of the square of type 'plane' (its extent from 'center' along "
-               "both in-plane directions)");
+               "both in-plane directions); the square is cut into at most 200 x 200 squares of "
+               "two triangles (larger than 'size' if needed)");
   set_positive(*pl, "height", 0.1, "Cylinder height along 'axis'");
   set_positive(*pl, "radius", 0.1, "Radius of the solid cylinder (type 'cylinder')");
   set_positive(*pl, "inner radius", 0.05,

@@ -32,7 +32,10 @@ constexpr const char* kColumns[] = {"step",
                                     "linear_iterations",
                                     "com_x",
                                     "com_y",
-                                    "com_z"};
+                                    "com_z",
+                                    "gap_min",
+                                    "gap_max",
+                                    "contact_resolves"};
 constexpr std::size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
 
 /// Appends `v` as printf("%.17g") would in the C locale (std::to_chars is specified so),
@@ -100,6 +103,9 @@ MonitorRow parse_row(const std::vector<std::string>& f) {
   r.dt = parse_number<double>(f[i++]);
   r.linear_iterations = parse_number<int>(f[i++]);
   for (double& x : r.com) x = parse_number<double>(f[i++]);
+  r.gap_min = parse_number<double>(f[i++]);
+  r.gap_max = parse_number<double>(f[i++]);
+  r.contact_resolves = parse_number<int>(f[i++]);
   return r;
 }
 
@@ -148,10 +154,12 @@ std::string format_row(const MonitorRow& r) {
   append_double(s, r.dt);
   s += ',';
   append_integer(s, r.linear_iterations);
-  for (double v : r.com) {
+  for (double v : {r.com[0], r.com[1], r.com[2], r.gap_min, r.gap_max}) {
     s += ',';
     append_double(s, v);
   }
+  s += ',';
+  append_integer(s, r.contact_resolves);
   return s;
 }
 

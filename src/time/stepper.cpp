@@ -31,7 +31,8 @@ void Stepper::apply(const std::vector<contact::Active>& active) {
   if (!contact_) return;
   std::vector<std::array<double, 4>> key;
   for (const auto& a : active) key.push_back({double(a.slave), double(a.facet), a.xi[0], a.xi[1]});
-  if (key == applied_) return;
+  // the rebuild is collective: rebuild when the set changed on any rank
+  if (contact_->global_count(key == applied_ ? 0 : 1) == 0) return;
   std::vector<linalg::PRow> rows;
   std::vector<GO> dummies;
   contact_->constraint_rows(active, rows, dummies);

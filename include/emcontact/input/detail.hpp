@@ -8,8 +8,8 @@
 namespace emc::input::detail {
 
 /// A top-level section of the input. A fixed section (`Time`) is validated against `schema`;
-/// a named section (`Bodies`, `Dirichlet`) holds user-named sublists, each validated against
-/// the template `schema` and documented as `<name>/<placeholder>`.
+/// a named section (`Bodies`, `Dirichlet`, `Contact`) holds user-named sublists, each validated
+/// against the template `schema` and documented as `<name>/<placeholder>`.
 struct Section {
   std::string name;
   std::string doc;

@@ -130,6 +130,9 @@ TEST_F(InputTest, DefaultsAreFilled) {
   EXPECT_EQ(p.sublist("Loads").get<Array<double>>("gravity"), vec(0, 0, 0));
   EXPECT_TRUE(p.isSublist("Dirichlet"));
   EXPECT_EQ(p.sublist("Dirichlet").numParams(), 0);
+  EXPECT_TRUE(p.isSublist("Contact"));
+  EXPECT_EQ(p.sublist("Contact").numParams(), 0);
+  EXPECT_EQ(body.sublist("Mesh").get<double>("half width"), 1.0);
   const auto& newton = p.sublist("Solver").sublist("Newton");
   EXPECT_EQ(newton.get<double>("relative tolerance"), 1e-10);
   EXPECT_EQ(newton.get<double>("absolute tolerance"), 0.0);
@@ -219,9 +222,9 @@ TEST_F(InputTest, MeshArrayOfTwoRefused) {
 
 TEST_F(InputTest, UnknownSectionRefused) {
   Xml x;
-  x.sections = R"(<ParameterList name="Contact"/>)";
-  expect_message(error(x), {"parameter \"Contact\"", "unknown section",
-                            "Time, Bodies, Loads, Dirichlet, Solver, Output"});
+  x.sections = R"(<ParameterList name="Contacts"/>)";
+  expect_message(error(x), {"parameter \"Contacts\"", "unknown section", "did you mean \"Contact\"",
+                            "Time, Bodies, Loads, Dirichlet, Contact, Solver, Output"});
 }
 
 TEST_F(InputTest, SublistGivenAsParameterRefused) {
@@ -287,6 +290,155 @@ TEST_F(InputTest, DirichletAccepted) {
     </ParameterList></ParameterList>)";
   const auto in = read(x);
   EXPECT_EQ(in.params->sublist("Dirichlet").sublist("fix").get<std::string>("surface"), "zmin");
+}
+
+// ---------------------------------------------------------------- contact pairs
+
+/// A rigid plane body "floor" (no Material, no Initial) next to the box "ball".
+const char* const kFloor = R"(<ParameterList name="floor">
+      <ParameterList name="Mesh">
+        <Parameter name="type" type="string" value="plane"/>
+        <Parameter name="half width" type="double" value="2"/>
+      </ParameterList>
+    </ParameterList>)";
+
+/// `x` with the floor and the contact pair "drop" made of `entries`.
+Xml with_pair(const std::string& entries, Xml x = Xml{}) {
+  x.bodies_extra += kFloor;
+  x.sections += R"(<ParameterList name="Contact"><ParameterList name="drop">)" + entries +
+                "</ParameterList></ParameterList>";
+  return x;
+}
+
+std::string param(const std::string& name, const std::string& value,
+                  const std::string& type = "string") {
+  return "<Parameter name=\"" + name + "\" type=\"" + type + "\" value=\"" + value + "\"/>";
+}
+
+const std::string kBallOnFloor = param("slave", "ball") + param("master", "floor");
+
+TEST_F(InputTest, ContactPairDefaults) {
+  const auto in = read(with_pair(kBallOnFloor));
+  const auto& pair = in.params->sublist("Contact").sublist("drop");
+  EXPECT_EQ(pair.get<std::string>("slave"), "ball");
+  EXPECT_EQ(pair.get<std::string>("master"), "floor");
+  EXPECT_EQ(pair.get<std::string>("type"), "full stick");
+  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 0);
+  EXPECT_EQ(pair.get<double>("max penetration"), 0.0);
+  // The rigid body keeps the defaults of what it does not need.
+  const auto& floor = in.params->sublist("Bodies").sublist("floor");
+  EXPECT_EQ(floor.sublist("Mesh").get<std::string>("type"), "plane");
+  EXPECT_EQ(floor.sublist("Mesh").get<double>("half width"), 2.0);
+  EXPECT_EQ(floor.sublist("Material").get<double>("young"), 1e6);
+  EXPECT_EQ(floor.sublist("Initial").get<Array<double>>("velocity"), vec(0, 0, 0));
+}
+
+TEST_F(InputTest, ContactPairWithSurfacesAndEveryParameter) {
+  Xml x;
+  x.bodies_extra = R"(<ParameterList name="plate"><ParameterList name="Mesh">
+        <Parameter name="type" type="string" value="box"/>
+      </ParameterList></ParameterList>)";
+  const auto in =
+      read(with_pair(param("slave", "ball/zmin") + param("master", "plate/zmax") +
+                         param("type", "frictionless") + param("max penetration", "0.01", "double"),
+                     x));
+  const auto& pair = in.params->sublist("Contact").sublist("drop");
+  EXPECT_EQ(pair.get<std::string>("slave"), "ball/zmin");
+  EXPECT_EQ(pair.get<std::string>("master"), "plate/zmax");
+  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 1);
+  EXPECT_EQ(pair.get<double>("max penetration"), 0.01);
+}
+
+TEST_F(InputTest, ContactOnUnknownBodyRefused) {
+  expect_message(error(with_pair(param("slave", "bal") + param("master", "floor"))),
+                 {"in.xml: parameter \"Contact/drop/slave\"", "\"bal\" is not a body",
+                  "allowed: a body name or body/surface", "bodies: ball, floor"});
+  expect_message(error(with_pair(param("slave", "ball") + param("master", "flor/top"))),
+                 {"parameter \"Contact/drop/master\"", "\"flor\" (in \"flor/top\") is not a body",
+                  "bodies: ball, floor"});
+  expect_message(error(with_pair(param("master", "floor"))),
+                 {"parameter \"Contact/drop/slave\"", "missing (required)"});
+  expect_message(error(with_pair(param("slave", "ball"))),
+                 {"parameter \"Contact/drop/master\"", "missing (required)"});
+  expect_message(error(with_pair(param("slave", "ball/") + param("master", "floor"))),
+                 {"parameter \"Contact/drop/slave\"", "no surface name after \"ball/\""});
+}
+
+TEST_F(InputTest, ContactOnOneBodyRefused) {
+  expect_message(error(with_pair(param("slave", "ball/zmin") + param("master", "ball/zmax"))),
+                 {"in.xml: parameter \"Contact/drop/master\"", "\"ball\" is also the slave's body",
+                  "self-contact is not supported", "allowed: a body other than \"ball\": floor"});
+}
+
+TEST_F(InputTest, RigidSlaveRefused) {
+  expect_message(error(with_pair(param("slave", "floor") + param("master", "ball"))),
+                 {"in.xml: parameter \"Contact/drop/slave\"",
+                  "body \"floor\" is a rigid surface (Mesh type \"plane\")",
+                  "the slave must be a deformable body", "allowed: a deformable body: ball"});
+  Xml x;
+  x.mesh = R"X(<Parameter name="type" type="string" value="rectangle"/>)X";  // ball rigid too
+  expect_message(error(with_pair(param("slave", "ball/surface") + param("master", "floor"), x)),
+                 {"parameter \"Contact/drop/slave\"", "(Mesh type \"rectangle\")",
+                  "allowed: a deformable body: (none in the input)"});
+}
+
+TEST_F(InputTest, BadContactTypeAndPenetrationRefused) {
+  expect_message(error(with_pair(kBallOnFloor + param("type", "sticky"))),
+                 {"in.xml: parameter \"Contact/drop/type\"", "\"sticky\"",
+                  "allowed: one of \"full stick\", \"frictionless\""});
+  expect_message(error(with_pair(kBallOnFloor + param("max penetration", "-0.001", "double"))),
+                 {"in.xml: parameter \"Contact/drop/max penetration\"", "-0.001", "out of range",
+                  "allowed: a double >= 0"});
+  expect_message(error(with_pair(kBallOnFloor + param("slaves", "ball"))),
+                 {"parameter \"Contact/drop/slaves\"", "unknown name", "did you mean \"slave\""});
+  Xml x;
+  x.sections = R"(<ParameterList name="Contact"><Parameter name="drop" type="int" value="1"/>
+    </ParameterList>)";
+  expect_message(error(x), {"parameter \"Contact/drop\"", "must be a sublist (one per pair)",
+                            "slave, master, type, max penetration"});
+}
+
+TEST_F(InputTest, MovingRigidBodyRefused) {
+  Xml x;
+  x.bodies_extra = R"X(<ParameterList name="floor">
+      <ParameterList name="Mesh"><Parameter name="type" type="string" value="plane"/></ParameterList>
+      <ParameterList name="Initial">
+        <Parameter name="velocity" type="Array(double)" value="{0, 0, -1}"/>
+      </ParameterList>
+    </ParameterList>)X";
+  expect_message(error(x), {"in.xml: parameter \"Bodies/floor/Initial/velocity\"",
+                            "value {0, 0, -1} on a rigid surface body (Mesh type \"plane\")",
+                            "motion of rigid surfaces is fixed for now", "allowed: {0, 0, 0}"});
+  // Also through an override, and for the angular velocity and a rectangle.
+  Xml y = with_pair(kBallOnFloor);
+  expect_message(error(y, {"Bodies/floor/Initial/angular velocity={0,0,1}"}),
+                 {"parameter \"Bodies/floor/Initial/angular velocity\"", "rigid surface"});
+  expect_message(
+      error(y, {"Bodies/floor/Mesh/type=rectangle", "Bodies/floor/Initial/velocity={1,0,0}"}),
+      {"parameter \"Bodies/floor/Initial/velocity\"", "(Mesh type \"rectangle\")"});
+  // A deformable body may move, and a rigid one may stay at rest.
+  EXPECT_EQ(
+      error(y, {"Bodies/ball/Initial/velocity={0,0,-1}", "Bodies/floor/Initial/velocity={0,0,0}"}),
+      "");
+}
+
+TEST_F(InputTest, OverrideOfContactPair) {
+  const auto in = read(with_pair(kBallOnFloor),
+                       {"Contact/drop/type=frictionless", "Contact/drop/max penetration=0.002",
+                        "Contact/drop/slave=ball/zmin"});
+  const auto& pair = in.params->sublist("Contact").sublist("drop");
+  EXPECT_EQ(pair.get<std::string>("type"), "frictionless");
+  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 1);
+  EXPECT_EQ(pair.get<double>("max penetration"), 0.002);
+  EXPECT_EQ(pair.get<std::string>("slave"), "ball/zmin");
+  expect_message(error(with_pair(kBallOnFloor), {"Contact/drop/type=slip"}),
+                 {"override \"Contact/drop/type=slip\"", "\"full stick\", \"frictionless\""});
+  expect_message(error(with_pair(kBallOnFloor), {"Contact/lift/type=frictionless"}),
+                 {"override \"Contact/lift/type=frictionless\"", "\"lift\" is not a pair", "drop"});
+  expect_message(error(with_pair(kBallOnFloor), {"Contact/drop/max penetration=-1"}),
+                 {"override \"Contact/drop/max penetration=-1\"", "out of range"});
+  expect_message(error(with_pair(kBallOnFloor), {"Contact/drop/master=ball"}),
+                 {"parameter \"Contact/drop/master\"", "self-contact"});
 }
 
 // ---------------------------------------------------------------- overrides
@@ -451,14 +603,19 @@ TEST(InputDocs, TablesListEveryParameter) {
         "| `poisson` | double | `0.3` | >= 0 and < 0.5 |",
         "| `velocity` | Array(double) | `{0, 0, 0}` | 3 numbers |", "| `Belos` | sublist |",
         "| `progress` | bool | `true` | `true`, `false` |", "### `Bodies/<body>/Mesh`",
-        "### `Dirichlet/<condition>`", "### `Solver/Linear`", "```xml"})
+        "### `Dirichlet/<condition>`", "### `Solver/Linear`", "```xml", "## Contact",
+        "### `Contact/<pair>`", "| `slave` | string | `\"\"` | any string |",
+        "| `type` | string | `full stick` | `full stick`, `frictionless` |",
+        "| `max penetration` | double | `0` | >= 0 |", "| `half width` | double | `1` | > 0 |",
+        "`spherical shell`, `plane`, `rectangle`, `file`"})
     EXPECT_NE(md.find(row), std::string::npos) << row;
 }
 
 TEST(InputSchema, ValidParametersHasEverySection) {
   const auto all = emc::input::valid_parameters();
-  for (const char* s : {"Time", "Bodies", "Loads", "Dirichlet", "Solver", "Output"})
+  for (const char* s : {"Time", "Bodies", "Loads", "Dirichlet", "Contact", "Solver", "Output"})
     EXPECT_TRUE(all->isSublist(s)) << s;
+  EXPECT_TRUE(all->sublist("Contact").sublist("<pair>").isParameter("max penetration"));
   EXPECT_TRUE(all->sublist("Bodies").sublist("<body>").isSublist("Mesh"));
   EXPECT_TRUE(all->sublist("Dirichlet").sublist("<condition>").isParameter("surface"));
 }
