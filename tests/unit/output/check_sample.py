@@ -63,7 +63,7 @@ def check_xdmf(d, frames):
             fail("geometry type")
         names = {a.get("Name"): a.get("Center") for a in g.findall("Attribute")}
         if names != {"displacement": "Node", "velocity": "Node", "von_mises": "Cell",
-                     "body": "Cell"}:
+                     "contact_status": "Node", "normal_force": "Node", "body": "Cell"}:
             fail(f"attributes {names}")
         for item in g.iter("DataItem"):
             fname, dset = item.text.strip().split(":")
