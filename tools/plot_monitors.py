@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots an emcontact monitors.csv: energies, angular momentum L and generalized momentum J.
+"""Plots an emcontact monitors.csv: energies, linear momentum L and angular momentum J.
 
 Usage: plot_monitors.py DIR/monitors.csv [--out PNG] [--title T]
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "emcontact/app/meshes.hpp"
@@ -153,6 +154,15 @@ Writers make_writers(const fem::Discretization& disc, const std::string& dir, in
   return w;
 }
 
+/// Output/plot: energies, L and J against time next to monitors.csv (a warning on failure).
+void plot_monitors(const std::string& dir) {
+  const std::string cmd = std::string("/usr/bin/python3 '") + EMC_PLOT_SCRIPT + "' '" + dir +
+                          "/monitors.csv' --out '" + dir + "/energies.png' > /dev/null 2>&1";
+  if (std::system(cmd.c_str()) != 0)
+    std::fprintf(stderr, "warning: could not plot %s/monitors.csv (%s)\n", dir.c_str(),
+                 cmd.c_str());
+}
+
 double energy_scale(const output::MonitorRow& r0) {
   const double s = std::fabs(r0.total);
   return s > 0 ? s : std::max(r0.kinetic + r0.elastic + std::fabs(r0.potential), 1e-300);
@@ -215,6 +225,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   }
   progress.finish();
   if (root) w.monitors->flush(true);
+  if (root && out.get<bool>("plot")) plot_monitors(sum.output_dir);
   sum.steps = state.step;
   sum.time = state.t;
   comm->barrier();

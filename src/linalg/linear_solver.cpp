@@ -84,14 +84,16 @@ SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x)
       st.fresh_preconditioner = true;
     }
     bool converged = false;
-    st.iterations = belos_solve(A, b, x, converged, message);
-    const bool slow = st.iterations > std::max(2 * fresh_iters_, fresh_iters_ + 10);
+    int its = belos_solve(A, b, x, converged, message);
+    st.iterations = its;
+    const bool slow = its > std::max(2 * fresh_iters_, fresh_iters_ + 10);
     if (!st.fresh_preconditioner && (!converged || slow)) {  // the reused one stopped working
       build_preconditioner(A);
       st.fresh_preconditioner = true;
-      st.iterations += belos_solve(A, b, x, converged, message);
+      its = belos_solve(A, b, x, converged, message);
+      st.iterations += its;
     }
-    if (st.fresh_preconditioner) fresh_iters_ = st.iterations;
+    if (st.fresh_preconditioner) fresh_iters_ = its;  // the count a fresh one achieves
   }
   // true residual check
   Vector r(b.getMap());

@@ -37,6 +37,7 @@ void Stepper::apply(const std::vector<contact::Active>& active) {
   std::vector<GO> dummies;
   contact_->constraint_rows(active, rows, dummies);
   elim_.set_constraints(fixed_, rows, {});
+  newton_.solver().invalidate();  // the reduced matrix changed its structure
   contact::Contact* c = contact_;
   linalg::Elimination* e = &elim_;
   newton_.on_matrix([c, e, dummies](const Matrix& A) { e->set_dummy_values(c->dummy_values(A, dummies)); });

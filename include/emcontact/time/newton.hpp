@@ -39,6 +39,8 @@ class Newton {
 
   /// Called with the assembled Newton matrix before each reduction (contact sets beta).
   void on_matrix(std::function<void(const Matrix&)> f) { on_matrix_ = std::move(f); }
+  /// The linear solver (the stepper drops its preconditioner when P changes).
+  linalg::LinearSolver& solver() { return solver_; }
   /// The contactless residual g of eq. 20 at the last iterate (contact forces, §4).
   const Vector& last_residual() const { return *g_; }
 
