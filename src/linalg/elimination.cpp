@@ -14,37 +14,61 @@ using Teuchos::rcp;
 
 Elimination::Elimination(RCP<const Map> owned) : owned_(owned) { set_constraints({}, {}, {}); }
 
-// ALGORITHM.md §3: P is the identity except in constrained rows; D holds the dummies' diagonal.
-void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vector<PRow>& rows,
-                                  const std::vector<std::pair<GO, double>>& dummy_diag) {
-  int local = fixed.empty() && rows.empty() ? 0 : 1, global = 0;
-  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 1, &local, &global);
-  identity_ = global == 0;
-
+// ALGORITHM.md §3: P is the identity except in constrained rows (fixed: empty rows).
+RCP<Matrix> Elimination::build_P(const std::vector<PRow>& rows) const {
   std::map<GO, const PRow*> special;
   for (const auto& r : rows) special[r.row] = &r;
   std::vector<char> is_fixed(owned_->getNodeNumElements(), 0);
-  for (GO g : fixed) is_fixed[owned_->getLocalElement(g)] = 1;
-
+  for (GO g : fixed_) is_fixed[owned_->getLocalElement(g)] = 1;
   std::size_t width = 1;
   for (const auto& r : rows) width = std::max(width, r.cols.size());
-  P_ = rcp(new Matrix(owned_, width));
+  auto P = rcp(new Matrix(owned_, width));
   const double one = 1.0;
   for (LO l = 0; l < static_cast<LO>(owned_->getNodeNumElements()); ++l) {
     const GO g = owned_->getGlobalElement(l);
     auto it = special.find(g);
     if (it != special.end()) {
-      P_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(it->second->cols),
-                             Teuchos::ArrayView<const double>(it->second->weights));
+      if (!it->second->cols.empty())
+        P->insertGlobalValues(g, Teuchos::ArrayView<const GO>(it->second->cols),
+                              Teuchos::ArrayView<const double>(it->second->weights));
     } else if (!is_fixed[l]) {
-      P_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
-                             Teuchos::ArrayView<const double>(&one, 1));
+      P->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
+                            Teuchos::ArrayView<const double>(&one, 1));
     }
   }
-  P_->fillComplete(owned_, owned_);
+  P->fillComplete(owned_, owned_);
+  return P;
+}
 
+void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vector<PRow>& rows,
+                                  const std::vector<std::pair<GO, double>>& dummy_diag) {
+  int local = fixed.empty() && rows.empty() ? 0 : 1, global = 0;
+  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 1, &local, &global);
+  identity_ = global == 0;
   fixed_ = fixed;
+  rows_ = rows;
+  P_ = build_P(rows);
+  Pt_ = Teuchos::null;
+  X_ = Teuchos::null;
   set_dummy_values(dummy_diag);
+}
+
+void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X) {
+  if (pt_rows.empty()) {
+    Pt_ = Teuchos::null;
+  } else {  // Pt: P with the given rows replaced
+    std::map<GO, PRow> merged;
+    for (const auto& r : rows_) merged[r.row] = r;
+    for (const auto& r : pt_rows) merged[r.row] = r;
+    std::vector<PRow> all;
+    for (auto& [g, r] : merged) all.push_back(std::move(r));
+    Pt_ = build_P(all);
+  }
+  X_ = rcp(new Matrix(owned_, 0));
+  for (const auto& e : X)  // rows owned elsewhere are sent there by fillComplete
+    X_->insertGlobalValues(e.row, Teuchos::ArrayView<const GO>(&e.col, 1),
+                           Teuchos::ArrayView<const double>(&e.value, 1));
+  X_->fillComplete(owned_, owned_);
 }
 
 void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag) {
@@ -61,9 +85,12 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
   RCP<Matrix> PtAP = rcp(new Matrix(owned_, 0));
-  Tpetra::TripleMatrixMultiply::MultiplyRAP(*P_, true, *A, false, *P_, false, *PtAP, true,
+  const Matrix& right = Pt_.is_null() ? *P_ : *Pt_;
+  Tpetra::TripleMatrixMultiply::MultiplyRAP(*P_, true, *A, false, right, false, *PtAP, true,
                                             "emcontact::linalg::PtAP");
-  return Tpetra::MatrixMatrix::add(1.0, false, *PtAP, 1.0, false, *D_);
+  auto out = Tpetra::MatrixMatrix::add(1.0, false, *PtAP, 1.0, false, *D_);
+  if (!X_.is_null()) out = Tpetra::MatrixMatrix::add(1.0, false, *out, 1.0, false, *X_);
+  return out;
 }
 
 void Elimination::reduce_residual(const Vector& g, Vector& R) const {

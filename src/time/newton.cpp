@@ -36,6 +36,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
   Vector scale(map), R(map), dq(map), du(map);
   NewtonResult res;
   double r0 = 0;
+  if (hooks_) hooks_->start(u0, u1);
   const double eps = std::numeric_limits<double>::epsilon();
   for (int it = 0;; ++it) {
     fem::AssemblyInfo info;
@@ -53,7 +54,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
     RCP<Matrix> Ar;
     {
       TimeMonitor tm(t_elim);
-      if (on_matrix_) on_matrix_(*A_);
+      if (hooks_) hooks_->before_reduce(u0, u1, g, *A_);
       elim_.reduce_residual(g, R);
     }
     const double r = R.norm2();
@@ -93,6 +94,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
     }
     elim_.expand(dq, du);
     u1.update(1.0, du, 1.0);
+    if (hooks_) hooks_->after_update(u0, u1);
     ++res.iterations;
   }
 }

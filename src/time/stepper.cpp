@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <set>
 
 #include "emcontact/error.hpp"
@@ -21,27 +22,20 @@ Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Eli
       max_cuts_(time.get<int>("max step cuts")),
       grow_after_(time.get<int>("grow after")) {
   if (s_.dt <= 0) s_.dt = dt_;
-  elim_.set_constraints(fixed_, {}, {});
+  if (contact_) {
+    constraints_ = std::make_unique<contact::ActiveConstraints>(*contact_, elim_, fixed_);
+    newton_.set_hooks(constraints_.get());
+  } else {
+    elim_.set_constraints(fixed_, {}, {});
+  }
 }
 
 bool Stepper::finished() const { return s_.t >= end_ - 1e-9 * dt_; }
 
-// ALGORITHM.md §3: rebuild P (and the beta hook) only when the active set changes.
-void Stepper::apply(const std::vector<contact::Active>& active) {
+// The active set's constraints for the next solve; a new P invalidates the preconditioner.
+void Stepper::apply(std::vector<contact::Active>& active) {
   if (!contact_) return;
-  std::vector<std::array<double, 4>> key;
-  for (const auto& a : active) key.push_back({double(a.slave), double(a.facet), a.xi[0], a.xi[1]});
-  // the rebuild is collective: rebuild when the set changed on any rank
-  if (contact_->global_count(key == applied_ ? 0 : 1) == 0) return;
-  std::vector<linalg::PRow> rows;
-  std::vector<GO> dummies;
-  contact_->constraint_rows(active, rows, dummies);
-  elim_.set_constraints(fixed_, rows, {});
-  newton_.solver().invalidate();  // the reduced matrix changed its structure
-  contact::Contact* c = contact_;
-  linalg::Elimination* e = &elim_;
-  newton_.on_matrix([c, e, dummies](const Matrix& A) { e->set_dummy_values(c->dummy_values(A, dummies)); });
-  applied_ = std::move(key);
+  if (constraints_->use(&active)) newton_.solver().invalidate();
 }
 
 // One step of size h with the active-set loop of ALGORITHM.md §6; false if Newton failed.

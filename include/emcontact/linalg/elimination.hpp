@@ -18,6 +18,27 @@ struct PRow {
   std::vector<double> weights;
 };
 
+/// One entry of the variation X of P^T (ALGORITHM.md §5); its row may be owned elsewhere.
+struct Entry {
+  GO row, col;
+  double value;
+};
+
+/// What constraints do inside Newton (implemented by contact): set the iterate-dependent
+/// parts of the elimination before the reduction, and restore the nonlinear constraints after
+/// the update u += P dq (ALGORITHM.md §5 update steps 2-3).
+class ConstraintHooks {
+ public:
+  virtual ~ConstraintHooks() = default;
+  /// Before the first residual: the start iterate u1 may be projected.
+  virtual void start(const Vector& u0, Vector& u1) = 0;
+  /// After assembly of A and g at the iterate u1, before P^T g and P^T A Pt + X + D.
+  virtual void before_reduce(const Vector& u0, const Vector& u1, const Vector& g,
+                             const Matrix& A) = 0;
+  /// After u1 += P dq.
+  virtual void after_update(const Vector& u0, Vector& u1) = 0;
+};
+
 class Elimination {
  public:
   explicit Elimination(Teuchos::RCP<const Map> owned);
@@ -32,11 +53,15 @@ class Elimination {
   /// which follows the Newton matrix while the active set, hence P, stays the same.
   void set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag);
 
+  /// The exact linearisation of frictionless contact (§5): the right factor Pt (rows that differ
+  /// from P; empty: Pt = P) and the variation X of P^T. Reset by set_constraints.
+  void set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X);
+
   /// True when P is the identity on every rank (nothing constrained): reduce/expand copy.
   bool identity() const { return identity_; }
   Teuchos::RCP<const Matrix> P() const { return P_; }
 
-  /// P^T A P + D.
+  /// P^T A Pt + X + D (Pt = P and X = 0 unless set_linearisation was called).
   Teuchos::RCP<Matrix> reduce_matrix(const Teuchos::RCP<Matrix>& A) const;
   /// R = P^T g.
   void reduce_residual(const Vector& g, Vector& R) const;
@@ -45,8 +70,10 @@ class Elimination {
 
  private:
   Teuchos::RCP<const Map> owned_;
-  Teuchos::RCP<Matrix> P_, D_;
+  Teuchos::RCP<Matrix> P_, D_, Pt_, X_;
   std::vector<GO> fixed_;
+  std::vector<PRow> rows_;
+  Teuchos::RCP<Matrix> build_P(const std::vector<PRow>& rows) const;
   bool identity_ = true;
 };
 

@@ -37,8 +37,8 @@ class Newton {
   /// Solves eq. 20 for u1 given (u0, V0) at t_n; u1 holds the start guess on entry.
   NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1);
 
-  /// Called with the assembled Newton matrix before each reduction (contact sets beta).
-  void on_matrix(std::function<void(const Matrix&)> f) { on_matrix_ = std::move(f); }
+  /// Constraints that change inside Newton (contact); null: only the fixed elimination.
+  void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
   /// The linear solver (the stepper drops its preconditioner when P changes).
   linalg::LinearSolver& solver() { return solver_; }
   /// The contactless residual g of eq. 20 at the last iterate (contact forces, §4).
@@ -51,7 +51,7 @@ class Newton {
   NewtonOptions opt_;
   Teuchos::RCP<FEMatrix> A_;  ///< built once on the FE graph, refilled every iteration
   Teuchos::RCP<Vector> g_;
-  std::function<void(const Matrix&)> on_matrix_;
+  linalg::ConstraintHooks* hooks_ = nullptr;
 };
 
 }  // namespace emc::time

@@ -6,9 +6,11 @@
 #include <Teuchos_ParameterList.hpp>
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "emcontact/contact/constraints.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/time/newton.hpp"
 
@@ -55,9 +57,9 @@ class Stepper {
   State& s_;
   double dt_, end_;
   int max_cuts_, grow_after_;
-  std::vector<std::array<double, 4>> applied_;  ///< (slave, facet, xi) P was built for
+  std::unique_ptr<contact::ActiveConstraints> constraints_;
 
-  void apply(const std::vector<contact::Active>& active);
+  void apply(std::vector<contact::Active>& active);
   bool solve_step(double h, Vector& u1, StepReport& rep);
 };
 
