@@ -24,18 +24,18 @@ namespace emc::kernels {
 /// In the global matrices: P, Pt are the identity on every row but the slave's three; the
 /// slave's dummy column (q_s2) of P and Pt is zero; X is zero outside the blocks below.
 struct FrictionlessBlocks {
-  double n[3];        ///< unit normal of the facet at n+1/2
-  double Pm[3][9];    ///< P, slave rows, master columns: N_i I  (du_s = N du_m + T dq)
-  double Pq[3][2];    ///< P, slave rows, the slave's own q columns: tau_xi, tau_eta at n+1/2
-  double Ptm[3][9];   ///< Pt (the exact right factor, §5): slave rows, master columns
-  double Ptq[3][2];   ///< Pt, slave rows, slave q columns
-  double Xsq[2][9];   ///< X: slave rows k (dxi, deta) on master columns
-  double Xmq[9][2];   ///< X: master rows on the slave's q columns
-  double Xmm[9][9];   ///< X: master rows on master columns
+  double n[3];       ///< unit normal of the facet at n+1/2
+  double Pm[3][9];   ///< P, slave rows, master columns: N_i I  (du_s = N du_m + T dq)
+  double Pq[3][2];   ///< P, slave rows, the slave's own q columns: tau_xi, tau_eta at n+1/2
+  double Ptm[3][9];  ///< Pt (the exact right factor, §5): slave rows, master columns
+  double Ptq[3][2];  ///< Pt, slave rows, slave q columns
+  double Xsq[2][9];  ///< X: slave rows k (dxi, deta) on master columns
+  double Xmq[9][2];  ///< X: master rows on the slave's q columns
+  double Xmm[9][9];  ///< X: master rows on master columns
 };
 
 /// dN_i/dxi_k for N = (1 - xi - eta, xi, eta) (§2).
-KOKKOS_INLINE_FUNCTION double facet_dshape(int i, int k) {
+KOKKOS_INLINE_FUNCTION double frictionless_dN(int i, int k) {
   return i == 0 ? -1.0 : (i == k + 1 ? 1.0 : 0.0);
 }
 
@@ -109,9 +109,9 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
   for (int k = 0; k < 2; ++k)
     for (int c = 0; c < 3; ++c) {
       const double a = h * (Gi[k][0] + Gi[k][1]) * 0.5 * n[c];
-      Dxm[k][c] = -a;                                  // m1
-      Dxm[k][3 + c] = h * Gi[k][0] * 0.5 * n[c];       // m2
-      Dxm[k][6 + c] = h * Gi[k][1] * 0.5 * n[c];       // m3
+      Dxm[k][c] = -a;                             // m1
+      Dxm[k][3 + c] = h * Gi[k][0] * 0.5 * n[c];  // m2
+      Dxm[k][6 + c] = h * Gi[k][1] * 0.5 * n[c];  // m3
     }
 
   // s . dn with dn = (I - n n^T) dc / |c|, c = tau_xi x tau_eta, dc = dtau_xi x tau_eta +
@@ -120,7 +120,8 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
   double sn = sv[0] * n[0] + sv[1] * n[1] + sv[2] * n[2];
   double sp[3];
   for (int c = 0; c < 3; ++c) sp[c] = (sv[c] - sn * n[c]) / f.area2;
-  // d/d(dtau_xi) of sp . (dtau_xi x tau_eta) = tau_eta x sp;  of sp . (tau_xi x dtau_eta) = sp x tau_xi
+  // d/d(dtau_xi) of sp . (dtau_xi x tau_eta) = tau_eta x sp;  of sp . (tau_xi x dtau_eta) = sp x
+  // tau_xi
   const double w1[3] = {f.t2[1] * sp[2] - f.t2[2] * sp[1], f.t2[2] * sp[0] - f.t2[0] * sp[2],
                         f.t2[0] * sp[1] - f.t2[1] * sp[0]};
   const double w2[3] = {sp[1] * f.t1[2] - sp[2] * f.t1[1], sp[2] * f.t1[0] - sp[0] * f.t1[2],
@@ -149,10 +150,10 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
   // Master row i: d(N_i g_s) = g_s (dN_i/dxi_k) dxi_k, dxi_k = dq_k/2 + Dxm_k du_m.
   for (int i = 0; i < 3; ++i)
     for (int c = 0; c < 3; ++c) {
-      for (int k = 0; k < 2; ++k) b.Xmq[3 * i + c][k] = 0.5 * facet_dshape(i, k) * gs[c];
+      for (int k = 0; k < 2; ++k) b.Xmq[3 * i + c][k] = 0.5 * frictionless_dN(i, k) * gs[c];
       for (int j = 0; j < 9; ++j)
         b.Xmm[3 * i + c][j] =
-            gs[c] * (facet_dshape(i, 0) * Dxm[0][j] + facet_dshape(i, 1) * Dxm[1][j]);
+            gs[c] * (frictionless_dN(i, 0) * Dxm[0][j] + frictionless_dN(i, 1) * Dxm[1][j]);
     }
   return true;
 }
@@ -179,8 +180,8 @@ KOKKOS_INLINE_FUNCTION void frictionless_residual(const FrictionlessBlocks& b, c
 /// switching and hysteresis are the caller's. A degenerate facet leaves xi and xs1 unchanged
 /// and returns +infinity.
 KOKKOS_INLINE_FUNCTION double frictionless_project(const double xs0[3], double xs1[3],
-                                                   const double xm0[3][3],
-                                                   const double xm1[3][3], double xi[2]) {
+                                                   const double xm0[3][3], const double xm1[3][3],
+                                                   double xi[2]) {
   double xmh[3][3], xsh[3];
   for (int r = 0; r < 3; ++r) {
     xsh[r] = 0.5 * (xs0[r] + xs1[r]);

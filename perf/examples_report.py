@@ -1,0 +1,89 @@
+#!/usr/bin/python3
+"""Runs the paper's examples (inputs/ball.xml, and the frictionless ones when present), copies
+their plots to docs/, and writes the measured figures to perf/results/examples.json and into
+README.md between <!-- examples:begin --> and <!-- examples:end -->.
+
+Usage (from the repository root, after building):
+    /usr/bin/python3 perf/examples_report.py [--build build] [--only ball] [--reuse]
+--reuse summarises existing out/<name>/ runs instead of running again.
+"""
+import argparse, datetime, json, os, re, shutil, subprocess, sys, time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, 'tools'))
+from summarize_run import load, summarize  # noqa: E402
+
+EXAMPLES = [('ball', 'inputs/ball.xml'), ('three_disks', 'inputs/three_disks.xml'),
+            ('hollow_cylinders', 'inputs/hollow_cylinders.xml')]
+
+
+def run(build, name, xml, reuse):
+    out = os.path.join('out', name)
+    info = {}
+    if not reuse:
+        cmd = [os.path.join(build, 'bin', 'emcontact'), xml, '--output', out,
+               '--set', 'Output/progress=false', '--set', 'Output/plot=true']
+        t0 = time.time()
+        p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
+        info['wall_s'] = time.time() - t0
+        if p.returncode != 0:
+            sys.exit('failed: %s\n%s%s' % (' '.join(cmd), p.stdout, p.stderr))
+        m = re.search(r'emcontact: (\d+) tets, (\d+) nodes', p.stdout)
+        info.update(tets=int(m[1]), nodes=int(m[2]))
+        info['command'] = 'build/bin/emcontact %s --output %s' % (xml, out)
+        with open(os.path.join(ROOT, out, 'stdout.txt'), 'w') as f:
+            f.write(p.stdout)
+    elif os.path.exists(os.path.join(ROOT, out, 'stdout.txt')):
+        txt = open(os.path.join(ROOT, out, 'stdout.txt')).read()
+        m = re.search(r'emcontact: (\d+) tets, (\d+) nodes.*?total ([\d.]+) s', txt)
+        info.update(tets=int(m[1]), nodes=int(m[2]), wall_s=float(m[3]))
+        info['command'] = 'build/bin/emcontact %s --output %s' % (xml, out)
+    info.update(summarize(load(os.path.join(ROOT, out, 'monitors.csv'))))
+    png = os.path.join(ROOT, out, 'energies.png')
+    if os.path.exists(png):
+        shutil.copy(png, os.path.join(ROOT, 'docs', name + '_energies.png'))
+    return info
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--build', default='build')
+    ap.add_argument('--only', action='append')
+    ap.add_argument('--reuse', action='store_true')
+    a = ap.parse_args()
+    build = os.path.join(ROOT, a.build)
+    os.makedirs(os.path.join(ROOT, 'docs'), exist_ok=True)
+    res_path = os.path.join(ROOT, 'perf', 'results', 'examples.json')
+    res = json.load(open(res_path)) if os.path.exists(res_path) else {}
+    for name, xml in EXAMPLES:
+        if (a.only and name not in a.only) or not os.path.exists(os.path.join(ROOT, xml)):
+            continue
+        res[name] = run(build, name, xml, a.reuse)
+        res[name]['date'] = datetime.date.today().isoformat()
+    os.makedirs(os.path.dirname(res_path), exist_ok=True)
+    json.dump(res, open(res_path, 'w'), indent=1)
+
+    md = ['Measured by `/usr/bin/python3 perf/examples_report.py` on this project\'s 2-core machine, one rank.', '',
+          '| example | tets | steps | wall s | Newton its/step (max) | max \\|E-E0\\|/\\|E0\\| | max \\|dL\\| | max \\|dJ\\| | contact periods [s] |',
+          '|---|---|---|---|---|---|---|---|---|']
+    for name, _ in EXAMPLES:
+        if name not in res:
+            continue
+        r = res[name]
+        md.append('| %s (%s) | %d | %d | %.0f | %.2f (%d) | %.1e | %.1e | %.1e | %s |' % (
+            name, r['date'], r['tets'], r['steps'], r['wall_s'], r['newton_per_step'], r['max_newton'], r['E_drift'],
+            r['L_drift_abs'], r['J_drift_abs'], ', '.join('%.3f-%.3f' % tuple(p) for p in r['contact_periods'])))
+    md.append('')
+    for name, _ in EXAMPLES:
+        if name in res and os.path.exists(os.path.join(ROOT, 'docs', name + '_energies.png')):
+            md.append('![%s: energies, L and J against time](docs/%s_energies.png)' % (name, name))
+    text = '\n'.join(md)
+    print(text)
+    p = os.path.join(ROOT, 'README.md')
+    s = open(p).read()
+    s = re.sub(r'(<!-- examples:begin -->\n).*?(<!-- examples:end -->)', lambda m: m[1] + text + '\n' + m[2], s, flags=re.S)
+    open(p, 'w').write(s)
+
+
+if __name__ == '__main__':
+    main()
