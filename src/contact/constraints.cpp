@@ -18,6 +18,7 @@ bool ActiveConstraints::use(std::vector<Active>* trial) {
     fless += contact_.pairs()[a.pair].kind == Kind::frictionless;
   }
   frictionless_ = contact_.global_count(fless) > 0;
+  if (frictionless_) applied_.clear();  // P is rebuilt at every iterate anyway
   if (contact_.global_count(key == applied_ ? 0 : 1) == 0) return false;
   std::vector<linalg::PRow> rows;
   dummies_.clear();
@@ -27,13 +28,37 @@ bool ActiveConstraints::use(std::vector<Active>* trial) {
   return true;
 }
 
-void ActiveConstraints::start(const Vector&, Vector&) {}
-
-void ActiveConstraints::before_reduce(const Vector&, const Vector&, const Vector&,
-                                      const Matrix& A) {
-  elim_.set_dummy_values(contact_.dummy_values(A, dummies_));  // beta, eq. 44
+// §5: the start iterate is projected (update steps 2-3), so that it satisfies (a) and (b).
+void ActiveConstraints::start(const Vector& u0, Vector& u1) {
+  if (!frictionless_) return;
+  x0_ = positions(contact_.disc_model(), contact_.replicate(u0));
+  after_update(u0, u1);
 }
 
-void ActiveConstraints::after_update(const Vector&, Vector&) {}
+void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vector& g,
+                                      const Matrix& A) {
+  if (!frictionless_) {  // stick only: P is fixed during the step, beta follows A (eq. 44)
+    elim_.set_dummy_values(contact_.dummy_values(A, dummies_));
+    return;
+  }
+  // frictionless: P depends on the iterate (N, tau at n+1/2, the facet): rebuild every time
+  const auto x1 = positions(contact_.disc_model(), contact_.replicate(u1));
+  std::vector<linalg::PRow> rows, pt_rows;
+  std::vector<linalg::Entry> X;
+  std::vector<std::pair<GO, double>> beta;
+  std::vector<GO> stick_dummies;
+  contact_.constraint_rows(*trial_, rows, stick_dummies);
+  beta = contact_.dummy_values(A, stick_dummies);
+  contact_.frictionless_rows(*trial_, x0_, x1, g, A, rows, pt_rows, X, beta);
+  for (const auto& r : rows) pt_rows.push_back(r);  // stick rows: Pt = P
+  elim_.set_constraints(fixed_, rows, beta);
+  elim_.set_linearisation(pt_rows, X);
+}
+
+void ActiveConstraints::after_update(const Vector&, Vector& u1) {
+  if (!frictionless_) return;
+  const auto x1 = positions(contact_.disc_model(), contact_.replicate(u1));
+  contact_.frictionless_project(*trial_, x0_, x1, u1);
+}
 
 }  // namespace emc::contact

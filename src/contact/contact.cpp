@@ -3,10 +3,12 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
+#include <memory>
 #include <set>
 
 #include "emcontact/contact/search.hpp"
 #include "kernels/facet.hpp"
+#include "kernels/frictionless.hpp"
 
 namespace emc::contact {
 
@@ -66,8 +68,23 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
           if (busy.count(s)) return;
           const Hit h1 = grid1.locate(&x1[3 * s]);
           if (h1.facet < 0 || !(h1.gap < 0 && h1.gap > -pr.dmax)) return;
-          const Hit h0 = grid0.locate(&x0[3 * s], h1.facet, 1e-3);
-          hit[k] = Active{s, static_cast<int>(p), h0.facet, {h0.xi[0], h0.xi[1]}};
+          Hit h0;
+          if (pr.kind == Kind::full_stick) {  // §4: xi = CPP of x_{s,n} at t_n
+            h0 = grid0.locate(&x0[3 * s], h1.facet, 1e-3);
+          } else {  // §5: CPP of the trial mid-point on the facet at n+1/2
+            double xh[3];
+            for (int i = 0; i < 3; ++i) xh[i] = 0.5 * (x0[3 * s + i] + x1[3 * s + i]);
+            double xm0[3][3], xm1[3][3], xmh[3][3];
+            for (int a = 0; a < 3; ++a)
+              for (int i = 0; i < 3; ++i) {
+                xm0[a][i] = x0[3 * pr.facets[h1.facet][a] + i];
+                xm1[a][i] = x1[3 * pr.facets[h1.facet][a] + i];
+                xmh[a][i] = 0.5 * (xm0[a][i] + xm1[a][i]);
+              }
+            h0.facet = h1.facet;
+            kernels::facet_cpp(xh, xmh, h0.xi, h0.gap);
+          }
+          hit[k] = Active{s, static_cast<int>(p), h0.facet, {h0.xi[0], h0.xi[1]}, false};
         });
     for (const auto& a : hit)
       if (a.slave >= 0) {
@@ -104,6 +121,7 @@ void Contact::constraint_rows(const std::vector<Active>& active, std::vector<lin
                               std::vector<GO>& dummies) const {
   const auto& m = disc_.model();
   for (const auto& a : active) {
+    if (pairs_[a.pair].kind != Kind::full_stick) continue;
     const auto& f = pairs_[a.pair].facets[a.facet];
     double N[3];
     kernels::facet_shape(a.xi, N);
@@ -118,6 +136,116 @@ void Contact::constraint_rows(const std::vector<Active>& active, std::vector<lin
       rows.push_back(std::move(r));
       dummies.push_back(fem::dof_gid(a.slave, c));
     }
+  }
+}
+
+// ALGORITHM.md §5: P rows du_s = N du_m + T dq, the exact right factor Pt and the variation X
+// of P^T; the slave's q dofs are its x and y dofs (dxi, deta), its z dof is the dummy.
+void Contact::frictionless_rows(const std::vector<Active>& active, const std::vector<double>& x0,
+                                const std::vector<double>& x1, const Vector& g, const Matrix& A,
+                                std::vector<linalg::PRow>& rows,
+                                std::vector<linalg::PRow>& pt_rows, std::vector<linalg::Entry>& X,
+                                std::vector<std::pair<GO, double>>& dummy_beta) const {
+  const auto& m = disc_.model();
+  auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
+  Vector diag(A.getRowMap());
+  A.getLocalDiagCopy(diag);
+  auto dv = diag.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto& map = *disc_.owned_map();
+  for (const auto& a : active) {
+    if (pairs_[a.pair].kind != Kind::frictionless) continue;
+    const auto& f = pairs_[a.pair].facets[a.facet];
+    double xm0[3][3], xm1[3][3], gs[3], beta = 0;
+    facet_coords(a, x0, xm0);
+    facet_coords(a, x1, xm1);
+    for (int c = 0; c < 3; ++c) {
+      const LO l = map.getLocalElement(fem::dof_gid(a.slave, c));
+      gs[c] = gv(l, 0);
+      beta += dv(l, 0) / 3;
+    }
+    kernels::FrictionlessBlocks b;
+    kernels::frictionless_blocks(&x0[3 * a.slave], &x1[3 * a.slave], xm0, xm1, a.xi, gs, b);
+    // master dof j = 3 i + c is a column (and a row of X) unless rigid or fixed
+    GO mdof[9];
+    bool live[9];
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) {
+        live[3 * i + c] = f[i] < m.num_nodes() && !m.fixed[f[i]];
+        mdof[3 * i + c] = live[3 * i + c] ? fem::dof_gid(f[i], c) : -1;
+      }
+    const GO q[2] = {fem::dof_gid(a.slave, 0), fem::dof_gid(a.slave, 1)};
+    for (int r = 0; r < 3; ++r) {
+      linalg::PRow p{fem::dof_gid(a.slave, r), {}, {}}, pt = p;
+      for (int j = 0; j < 9; ++j)
+        if (live[j]) {
+          p.cols.push_back(mdof[j]);
+          p.weights.push_back(b.Pm[r][j]);
+          pt.cols.push_back(mdof[j]);
+          pt.weights.push_back(b.Ptm[r][j]);
+        }
+      for (int k = 0; k < 2; ++k) {
+        p.cols.push_back(q[k]);
+        p.weights.push_back(b.Pq[r][k]);
+        pt.cols.push_back(q[k]);
+        pt.weights.push_back(b.Ptq[r][k]);
+      }
+      rows.push_back(std::move(p));
+      pt_rows.push_back(std::move(pt));
+    }
+    for (int j = 0; j < 9; ++j) {
+      if (!live[j]) continue;
+      for (int k = 0; k < 2; ++k) {
+        X.push_back({q[k], mdof[j], b.Xsq[k][j]});
+        X.push_back({mdof[j], q[k], b.Xmq[j][k]});
+      }
+      for (int i = 0; i < 9; ++i)
+        if (live[i] && b.Xmm[j][i] != 0) X.push_back({mdof[j], mdof[i], b.Xmm[j][i]});
+    }
+    dummy_beta.emplace_back(fem::dof_gid(a.slave, 2), beta);  // eq. 59
+  }
+}
+
+// ALGORITHM.md §5 update steps 2-3 (eq. 60-64) for my frictionless slaves.
+void Contact::frictionless_project(std::vector<Active>& active, const std::vector<double>& x0,
+                                   const std::vector<double>& x1, Vector& u1) const {
+  const double tol_f = 1e-3;
+  const auto& m = disc_.model();
+  auto uv = u1.getLocalViewHost(Tpetra::Access::ReadWrite);
+  const auto& map = *disc_.owned_map();
+  std::vector<double> xh;
+  std::vector<std::unique_ptr<FacetGrid>> grids(pairs_.size());
+  for (auto& a : active) {
+    if (pairs_[a.pair].kind != Kind::frictionless) continue;
+    double xm0[3][3], xm1[3][3], xi[2] = {a.xi[0], a.xi[1]}, xs1[3];
+    for (int i = 0; i < 3; ++i) xs1[i] = x1[3 * a.slave + i];
+    facet_coords(a, x0, xm0);
+    facet_coords(a, x1, xm1);
+    double out = kernels::frictionless_project(&x0[3 * a.slave], xs1, xm0, xm1, xi);
+    if (out > tol_f) {  // step 2: beyond the hysteresis, move to a neighbour with a valid CPP
+      if (xh.empty()) {
+        xh.resize(x0.size());
+        for (std::size_t k = 0; k < x0.size(); ++k) xh[k] = 0.5 * (x0[k] + x1[k]);
+      }
+      const Pair& pr = pairs_[a.pair];
+      if (!grids[a.pair]) grids[a.pair] = std::make_unique<FacetGrid>(pr.facets, xh, pr.dmax);
+      double y[3];
+      for (int i = 0; i < 3; ++i) y[i] = xh[3 * a.slave + i];
+      const Hit h = grids[a.pair]->locate(y);
+      if (h.facet >= 0 && h.facet != a.facet) {
+        a.facet = h.facet;
+        for (int i = 0; i < 3; ++i) xs1[i] = x1[3 * a.slave + i];
+        xi[0] = h.xi[0];
+        xi[1] = h.xi[1];
+        facet_coords(a, x0, xm0);
+        facet_coords(a, x1, xm1);
+        out = kernels::frictionless_project(&x0[3 * a.slave], xs1, xm0, xm1, xi);
+      }
+    }
+    a.off = out > tol_f;  // kept with the extrapolated xi; released at the end of the step
+    a.xi[0] = xi[0];
+    a.xi[1] = xi[1];
+    for (int c = 0; c < 3; ++c)
+      uv(map.getLocalElement(fem::dof_gid(a.slave, c)), 0) = xs1[c] - m.X[3 * a.slave + c];
   }
 }
 

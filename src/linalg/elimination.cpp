@@ -85,9 +85,15 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
   RCP<Matrix> PtAP = rcp(new Matrix(owned_, 0));
-  const Matrix& right = Pt_.is_null() ? *P_ : *Pt_;
-  Tpetra::TripleMatrixMultiply::MultiplyRAP(*P_, true, *A, false, right, false, *PtAP, true,
-                                            "emcontact::linalg::PtAP");
+  if (Pt_.is_null()) {
+    Tpetra::TripleMatrixMultiply::MultiplyRAP(*P_, true, *A, false, *P_, false, *PtAP, true,
+                                              "emcontact::linalg::PtAP");
+  } else {  // P^T A Pt as two products (the triple product requires R = P^T of the same P)
+    RCP<Matrix> PtA = rcp(new Matrix(owned_, 0));
+    Tpetra::MatrixMatrix::Multiply(*P_, true, *A, false, *PtA, true, "emcontact::linalg::PtA");
+    Tpetra::MatrixMatrix::Multiply(*PtA, false, *Pt_, false, *PtAP, true,
+                                   "emcontact::linalg::PtAPt");
+  }
   auto out = Tpetra::MatrixMatrix::add(1.0, false, *PtAP, 1.0, false, *D_);
   if (!X_.is_null()) out = Tpetra::MatrixMatrix::add(1.0, false, *out, 1.0, false, *X_);
   return out;

@@ -64,7 +64,8 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
     int n_release = 0;
     for (std::size_t k = 0; k < trial.size(); ++k) {
       const int s = trial[k].slave;
-      if (fN[k] < 0 && !pinned.count(s)) {  // §6.4: tensile -> release and solve again
+      // §6.4: tensile (or, frictionless, off its master by more than tol_f) -> release
+      if ((fN[k] < 0 || trial[k].off) && !pinned.count(s)) {
         released.insert(s);
         ++n_release;
       } else {
@@ -89,7 +90,7 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   std::vector<contact::Active> keep;
   s_.normal_force.clear();
   for (std::size_t k = 0; k < trial.size(); ++k)
-    if (fN[k] >= 0) {
+    if (fN[k] >= 0 && !trial[k].off) {
       keep.push_back(trial[k]);
       s_.normal_force.push_back(fN[k]);
     }

@@ -31,6 +31,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<std::array<double, 4>> applied_;  ///< (slave, facet, xi) P was built for
   std::vector<GO> dummies_;
   bool frictionless_ = false;  ///< any active frictionless slave on any rank
+  std::vector<double> x0_;     ///< positions at t_n (frictionless)
 };
 
 }  // namespace emc::contact

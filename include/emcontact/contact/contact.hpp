@@ -16,6 +16,7 @@ struct Active {
   int pair = -1;
   int facet = -1;
   double xi[2] = {0, 0};
+  bool off = false;  ///< frictionless: outside every facet by more than tol_f (released at the end)
   bool operator<(const Active& o) const { return slave < o.slave; }
 };
 
@@ -47,10 +48,24 @@ class Contact {
                                     const std::vector<double>& x1,
                                     const std::vector<Active>& active) const;
 
-  /// Rows of P for the active stick slaves (du_s = N du_m, §3-§4) and their dummy dofs;
+  /// Rows of P for the active stick slaves (frictionless ones are skipped) (du_s = N du_m, §3-§4) and their dummy dofs;
   /// columns of fixed master dofs are dropped (their column of P is zero).
   void constraint_rows(const std::vector<Active>& active, std::vector<linalg::PRow>& rows,
                        std::vector<GO>& dummies) const;
+
+  /// The facet nodes' coordinates of an active entry in configuration x.
+  void facet_coords(const Active& a, const std::vector<double>& x, double xm[3][3]) const;
+  /// Frictionless (§5): adds P, Pt and X of the active frictionless slaves at the state
+  /// (x0, x1), with g the contactless residual; dummy_beta gets (dummy dof, beta).
+  void frictionless_rows(const std::vector<Active>& active, const std::vector<double>& x0,
+                         const std::vector<double>& x1, const Vector& g, const Matrix& A,
+                         std::vector<linalg::PRow>& rows, std::vector<linalg::PRow>& pt_rows,
+                         std::vector<linalg::Entry>& X,
+                         std::vector<std::pair<GO, double>>& dummy_beta) const;
+  /// Update steps 2-3 of §5 for my frictionless slaves: facet (hysteresis tol_f = 1e-3, §5
+  /// step 2), xi, and the normal correction of u1's slave dofs.
+  void frictionless_project(std::vector<Active>& active, const std::vector<double>& x0,
+                            const std::vector<double>& x1, Vector& u1) const;
 
   /// beta = tr(A_ss)/3 for each dummy's slave (eq. 44), from A's diagonal.
   std::vector<std::pair<GO, double>> dummy_values(const Matrix& A,
@@ -69,7 +84,6 @@ class Contact {
   Teuchos::RCP<const Map> all_;              ///< every dof on every rank
   Teuchos::RCP<const Import> to_all_;
 
-  void facet_coords(const Active& a, const std::vector<double>& x, double xm[3][3]) const;
 };
 
 }  // namespace emc::contact
