@@ -10,6 +10,7 @@
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/app/progress.hpp"
 #include "emcontact/app/run.hpp"
+#include "emcontact/app/simulation.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
@@ -92,6 +93,7 @@ output::MonitorRow monitor_row(const fem::Discretization& disc, const time::Stat
   r.gap_min = rep.contact.active ? rep.contact.gap_min : 0.0;
   r.gap_max = rep.contact.active ? rep.contact.gap_max : 0.0;
   r.contact_resolves = rep.contact.resolves;
+  r.normal_force_min = rep.contact.normal_force_min;
   r.newton_iterations = rep.newton_iterations;
   r.dt = rep.dt;
   r.linear_iterations = rep.linear_iterations;
@@ -170,23 +172,37 @@ double energy_scale(const output::MonitorRow& r0) {
 
 }  // namespace
 
+std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
+  auto sim = std::make_unique<Simulation>();
+  sim->in = input::read_input(opt.input, opt.overrides);
+  const auto& P = *sim->in.params;
+  auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
+  sim->model = fem::build_model(P, std::move(meshes), opt.input);
+  sim->disc = std::make_unique<fem::Discretization>(sim->model, comm);
+  const auto& disc = *sim->disc;
+  sim->contact =
+      std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
+  sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
+  sim->solver =
+      std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm);
+  sim->newton = std::make_unique<time::Newton>(
+      disc, *sim->elim, *sim->solver, time::newton_options(P.sublist("Solver").sublist("Newton")));
+  sim->state.u = rcp(new Vector(disc.owned_map()));
+  sim->state.V = initial_velocity(disc);
+  sim->stepper = std::make_unique<time::Stepper>(P.sublist("Time"), *sim->newton, *sim->elim,
+                                                 owned_fixed_dofs(disc), sim->contact.get(),
+                                                 sim->state);
+  return sim;
+}
+
 Summary run(const Options& opt, RCP<const Comm> comm) {
   Teuchos::Time clock("emcontact: wall", true);
-  const input::Input in = input::read_input(opt.input, opt.overrides);
-  const auto& P = *in.params;
-  auto meshes = build_meshes(P, in.dir, opt.input, *comm);
-  const fem::Model model = fem::build_model(P, std::move(meshes), opt.input);
-  const fem::Discretization disc(model, comm);
-
-  contact::Contact contact(disc, contact::build_pairs(P, model, opt.input));
-  linalg::Elimination elim(disc.owned_map());
-  linalg::LinearSolver solver(P.sublist("Solver").sublist("Linear"), comm);
-  time::Newton newton(disc, elim, solver,
-                      time::newton_options(P.sublist("Solver").sublist("Newton")));
-  time::State state;
-  state.u = rcp(new Vector(disc.owned_map()));
-  state.V = initial_velocity(disc);
-  time::Stepper stepper(P.sublist("Time"), newton, elim, owned_fixed_dofs(disc), &contact, state);
+  auto sim = setup(opt, comm);
+  const auto& P = *sim->in.params;
+  const fem::Model& model = sim->model;
+  const fem::Discretization& disc = *sim->disc;
+  time::State& state = sim->state;
+  time::Stepper& stepper = *sim->stepper;
 
   const auto& out = P.sublist("Output");
   Summary sum;

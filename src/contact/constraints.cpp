@@ -47,10 +47,9 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vec
   std::vector<linalg::Entry> X;
   std::vector<std::pair<GO, double>> beta;
   std::vector<GO> stick_dummies;
-  contact_.constraint_rows(*trial_, rows, stick_dummies);
+  contact_.constraint_rows(*trial_, rows, stick_dummies);  // stick rows: Pt = P there
   beta = contact_.dummy_values(A, stick_dummies);
   contact_.frictionless_rows(*trial_, x0_, x1, g, A, rows, pt_rows, X, beta);
-  for (const auto& r : rows) pt_rows.push_back(r);  // stick rows: Pt = P
   elim_.set_constraints(fixed_, rows, beta);
   elim_.set_linearisation(pt_rows, X);
 }

@@ -54,7 +54,9 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
 }
 
 void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X) {
-  if (pt_rows.empty()) {
+  int local = pt_rows.empty() ? 0 : 1, any = 0;  // collective decision: fillComplete follows
+  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 1, &local, &any);
+  if (!any) {
     Pt_ = Teuchos::null;
   } else {  // Pt: P with the given rows replaced
     std::map<GO, PRow> merged;
@@ -64,7 +66,12 @@ void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std:
     for (auto& [g, r] : merged) all.push_back(std::move(r));
     Pt_ = build_P(all);
   }
-  X_ = rcp(new Matrix(owned_, 0));
+  std::vector<std::size_t> count(owned_->getNodeNumElements(), 0);
+  for (const auto& e : X) {
+    const LO l = owned_->getLocalElement(e.row);
+    if (l != Teuchos::OrdinalTraits<LO>::invalid()) ++count[l];
+  }
+  X_ = rcp(new Matrix(owned_, Teuchos::ArrayView<const std::size_t>(count)));
   for (const auto& e : X)  // rows owned elsewhere are sent there by fillComplete
     X_->insertGlobalValues(e.row, Teuchos::ArrayView<const GO>(&e.col, 1),
                            Teuchos::ArrayView<const double>(&e.value, 1));

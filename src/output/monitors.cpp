@@ -35,7 +35,8 @@ constexpr const char* kColumns[] = {"step",
                                     "com_z",
                                     "gap_min",
                                     "gap_max",
-                                    "contact_resolves"};
+                                    "contact_resolves",
+                                    "normal_force_min"};
 constexpr std::size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
 
 /// Appends `v` as printf("%.17g") would in the C locale (std::to_chars is specified so),
@@ -106,6 +107,7 @@ MonitorRow parse_row(const std::vector<std::string>& f) {
   r.gap_min = parse_number<double>(f[i++]);
   r.gap_max = parse_number<double>(f[i++]);
   r.contact_resolves = parse_number<int>(f[i++]);
+  r.normal_force_min = parse_number<double>(f[i++]);
   return r;
 }
 
@@ -160,6 +162,8 @@ std::string format_row(const MonitorRow& r) {
   }
   s += ',';
   append_integer(s, r.contact_resolves);
+  s += ',';
+  append_double(s, r.normal_force_min);
   return s;
 }
 

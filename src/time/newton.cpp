@@ -28,6 +28,11 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
 }
 
 NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
+  last_ = iterate(u0, V0, dt, u1);
+  return last_;
+}
+
+NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
   static auto& t_asm = *TimeMonitor::getNewTimer("emcontact: assembly");
   static auto& t_elim = *TimeMonitor::getNewTimer("emcontact: elimination");
   static auto& t_solve = *TimeMonitor::getNewTimer("emcontact: linear solve");

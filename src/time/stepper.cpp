@@ -6,6 +6,8 @@
 #include <memory>
 #include <set>
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include "emcontact/error.hpp"
 
 namespace emc::time {
@@ -98,6 +100,10 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   rep.contact.active = contact_->global_count(static_cast<int>(trial.size()));
   rep.contact.reactivated = contact_->global_count(rep.contact.reactivated);
   contact_->gap_range(x1, trial, rep.contact.gap_min, rep.contact.gap_max);
+  double fmin = 0, gmin = 0;
+  for (double f : fN) fmin = std::min(fmin, f);  // every node active at the accepted solve
+  Teuchos::reduceAll(*contact_->disc_comm(), Teuchos::REDUCE_MIN, 1, &fmin, &gmin);
+  rep.contact.normal_force_min = gmin;
   s_.active = std::move(keep);
   return true;
 }

@@ -25,6 +25,7 @@ struct StepContactStats {
   int resolves = 0;        ///< extra solves of the step for activation / release
   int reactivated = 0;     ///< nodes released and activated again within the step (kept)
   double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active nodes (global)
+  double normal_force_min = 0;      ///< smallest f_N of the nodes active at the accepted solve
 };
 
 class Contact {
@@ -33,6 +34,7 @@ class Contact {
 
   bool empty() const { return pairs_.empty(); }
   const fem::Model& disc_model() const { return disc_.model(); }
+  Teuchos::RCP<const Comm> disc_comm() const { return disc_.comm(); }
   const std::vector<Pair>& pairs() const { return pairs_; }
 
   /// Every node's displacement on every rank (3 N), from an owned vector.

@@ -41,16 +41,21 @@ class Newton {
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
   /// The linear solver (the stepper drops its preconditioner when P changes).
   linalg::LinearSolver& solver() { return solver_; }
+  /// The result of the last solve (residual history).
+  const NewtonResult& last() const { return last_; }
   /// The contactless residual g of eq. 20 at the last iterate (contact forces, §4).
   const Vector& last_residual() const { return *g_; }
 
  private:
+  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1);
+
   const fem::Discretization& disc_;
   linalg::Elimination& elim_;
   linalg::LinearSolver& solver_;
   NewtonOptions opt_;
   Teuchos::RCP<FEMatrix> A_;  ///< built once on the FE graph, refilled every iteration
   Teuchos::RCP<Vector> g_;
+  NewtonResult last_;
   linalg::ConstraintHooks* hooks_ = nullptr;
 };
 
