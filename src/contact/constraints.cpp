@@ -18,11 +18,15 @@ bool ActiveConstraints::use(std::vector<Active>* trial) {
     fless += contact_.pairs()[a.pair].kind == Kind::frictionless;
   }
   frictionless_ = contact_.global_count(fless) > 0;
-  if (frictionless_) applied_.clear();  // P is rebuilt at every iterate anyway
+  if (frictionless_) {  // P is rebuilt at every iterate anyway (xi changes inside Newton)
+    applied_.clear();
+    index_ = contact_.gather(*trial);
+  }
   if (contact_.global_count(key == applied_ ? 0 : 1) == 0) return false;
   std::vector<linalg::PRow> rows;
   dummies_.clear();
-  contact_.constraint_rows(*trial, rows, dummies_);
+  index_ = contact_.gather(*trial);
+  contact_.constraint_rows(*trial, index_, {}, {}, rows, dummies_);
   elim_.set_constraints(fixed_, rows, {});
   applied_ = std::move(key);
   return true;
@@ -47,9 +51,9 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vec
   std::vector<linalg::Entry> X;
   std::vector<std::pair<GO, double>> beta;
   std::vector<GO> stick_dummies;
-  contact_.constraint_rows(*trial_, rows, stick_dummies);  // stick rows: Pt = P there
+  contact_.constraint_rows(*trial_, index_, x0_, x1, rows, stick_dummies);  // Pt = P there
   beta = contact_.dummy_values(A, stick_dummies);
-  contact_.frictionless_rows(*trial_, x0_, x1, g, A, rows, pt_rows, X, beta);
+  contact_.frictionless_rows(*trial_, index_, x0_, x1, g, A, rows, pt_rows, X, beta);
   elim_.set_constraints(fixed_, rows, beta);
   elim_.set_linearisation(pt_rows, X);
 }
@@ -58,6 +62,7 @@ void ActiveConstraints::after_update(const Vector&, Vector& u1) {
   if (!frictionless_) return;
   const auto x1 = positions(contact_.disc_model(), contact_.replicate(u1));
   contact_.frictionless_project(*trial_, x0_, x1, u1);
+  index_ = contact_.gather(*trial_);  // xi and facets moved: chains use the new ones
 }
 
 }  // namespace emc::contact

@@ -3,6 +3,9 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
+#include <Teuchos_DefaultMpiComm.hpp>
+
+#include <algorithm>
 #include <memory>
 #include <set>
 
@@ -116,10 +119,71 @@ std::vector<double> Contact::normal_forces(const Vector& g, const std::vector<do
   return fN;
 }
 
-// ALGORITHM.md §3-§4: du_s = N du_m; the slave's own column of P is zero (three dummies).
-void Contact::constraint_rows(const std::vector<Active>& active, std::vector<linalg::PRow>& rows,
-                              std::vector<GO>& dummies) const {
+ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
+  std::vector<double> send;
+  for (const auto& a : mine)
+    send.insert(send.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1]});
+  const auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(disc_.comm());
+  const int np = disc_.comm()->getSize();
+  int n = static_cast<int>(send.size());
+  std::vector<int> counts(np), displs(np, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, *mpi->getRawMpiComm());
+  for (int p = 1; p < np; ++p) displs[p] = displs[p - 1] + counts[p - 1];
+  std::vector<double> all(displs[np - 1] + counts[np - 1]);
+  MPI_Allgatherv(send.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                 *mpi->getRawMpiComm());
+  ActiveIndex index;
+  for (std::size_t k = 0; k + 4 < all.size(); k += 5) {
+    Active a;
+    a.slave = static_cast<int>(all[k]);
+    a.pair = static_cast<int>(all[k + 1]);
+    a.facet = static_cast<int>(all[k + 2]);
+    a.xi[0] = all[k + 3];
+    a.xi[1] = all[k + 4];
+    index.by_slave.emplace(a.slave, a);
+  }
+  return index;
+}
+
+// ALGORITHM.md §3: rows of P compose along chains, P = P_1 P_2 ...
+void Contact::expand_node(int node, int c, double w, const ActiveIndex& index,
+                          const std::vector<double>& x0, const std::vector<double>& x1,
+                          std::vector<int>& path, linalg::PRow& r) const {
   const auto& m = disc_.model();
+  if (node >= m.num_nodes() || m.fixed[node]) return;  // rigid or fixed: no column
+  auto it = index.by_slave.find(node);
+  const bool on_path = std::find(path.begin(), path.end(), node) != path.end();
+  if (it == index.by_slave.end() || on_path) {
+    if (on_path) ++index.cycles;
+    r.cols.push_back(fem::dof_gid(node, c));
+    r.weights.push_back(w);
+    return;
+  }
+  const Active& a = it->second;
+  const auto& f = pairs_[a.pair].facets[a.facet];
+  double N[3];
+  kernels::facet_shape(a.xi, N);
+  path.push_back(node);
+  for (int i = 0; i < 3; ++i) expand_node(f[i], c, w * N[i], index, x0, x1, path, r);
+  path.pop_back();
+  if (pairs_[a.pair].kind == Kind::frictionless && !x1.empty()) {  // + T dq at n+1/2 (§5)
+    double xm0[3][3], xm1[3][3], xh[3][3];
+    facet_coords(a, x0, xm0);
+    facet_coords(a, x1, xm1);
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) xh[j][i] = 0.5 * (xm0[j][i] + xm1[j][i]);
+    const kernels::Facet fh = kernels::facet(xh);
+    r.cols.push_back(fem::dof_gid(node, 0));
+    r.weights.push_back(w * fh.t1[c]);
+    r.cols.push_back(fem::dof_gid(node, 1));
+    r.weights.push_back(w * fh.t2[c]);
+  }
+}
+
+// ALGORITHM.md §3-§4: du_s = N du_m; the slave's own column of P is zero (three dummies).
+void Contact::constraint_rows(const std::vector<Active>& active, const ActiveIndex& index,
+                              const std::vector<double>& x0, const std::vector<double>& x1,
+                              std::vector<linalg::PRow>& rows, std::vector<GO>& dummies) const {
   for (const auto& a : active) {
     if (pairs_[a.pair].kind != Kind::full_stick) continue;
     const auto& f = pairs_[a.pair].facets[a.facet];
@@ -128,11 +192,8 @@ void Contact::constraint_rows(const std::vector<Active>& active, std::vector<lin
     for (int c = 0; c < 3; ++c) {
       linalg::PRow r;
       r.row = fem::dof_gid(a.slave, c);
-      for (int k = 0; k < 3; ++k)
-        if (f[k] < m.num_nodes() && !m.fixed[f[k]]) {  // rigid or fixed master: no column
-          r.cols.push_back(fem::dof_gid(f[k], c));
-          r.weights.push_back(N[k]);
-        }
+      std::vector<int> path = {a.slave};
+      for (int k = 0; k < 3; ++k) expand_node(f[k], c, N[k], index, x0, x1, path, r);
       rows.push_back(std::move(r));
       dummies.push_back(fem::dof_gid(a.slave, c));
     }
@@ -141,7 +202,8 @@ void Contact::constraint_rows(const std::vector<Active>& active, std::vector<lin
 
 // ALGORITHM.md §5: P rows du_s = N du_m + T dq, the exact right factor Pt and the variation X
 // of P^T; the slave's q dofs are its x and y dofs (dxi, deta), its z dof is the dummy.
-void Contact::frictionless_rows(const std::vector<Active>& active, const std::vector<double>& x0,
+void Contact::frictionless_rows(const std::vector<Active>& active, const ActiveIndex& index,
+                                const std::vector<double>& x0,
                                 const std::vector<double>& x1, const Vector& g, const Matrix& A,
                                 std::vector<linalg::PRow>& rows,
                                 std::vector<linalg::PRow>& pt_rows, std::vector<linalg::Entry>& X,
@@ -165,24 +227,25 @@ void Contact::frictionless_rows(const std::vector<Active>& active, const std::ve
     }
     kernels::FrictionlessBlocks b;
     kernels::frictionless_blocks(&x0[3 * a.slave], &x1[3 * a.slave], xm0, xm1, a.xi, gs, b);
-    // master dof j = 3 i + c is a column (and a row of X) unless rigid or fixed
+    // master dof j = 3 i + c is a column (and a row of X) unless rigid or fixed; a master node
+    // that is an active slave itself contributes its own row of P (chain, §3), and then its
+    // X terms are left out (the linearisation is not exact in such steps)
     GO mdof[9];
     bool live[9];
     for (int i = 0; i < 3; ++i)
       for (int c = 0; c < 3; ++c) {
-        live[3 * i + c] = f[i] < m.num_nodes() && !m.fixed[f[i]];
+        live[3 * i + c] = f[i] < m.num_nodes() && !m.fixed[f[i]] && !index.by_slave.count(f[i]);
         mdof[3 * i + c] = live[3 * i + c] ? fem::dof_gid(f[i], c) : -1;
       }
     const GO q[2] = {fem::dof_gid(a.slave, 0), fem::dof_gid(a.slave, 1)};
     for (int r = 0; r < 3; ++r) {
       linalg::PRow p{fem::dof_gid(a.slave, r), {}, {}}, pt = p;
-      for (int j = 0; j < 9; ++j)
-        if (live[j]) {
-          p.cols.push_back(mdof[j]);
-          p.weights.push_back(b.Pm[r][j]);
-          pt.cols.push_back(mdof[j]);
-          pt.weights.push_back(b.Ptm[r][j]);
-        }
+      for (int j = 0; j < 9; ++j) {
+        std::vector<int> path = {a.slave};
+        expand_node(f[j / 3], j % 3, b.Pm[r][j], index, x0, x1, path, p);
+        path = {a.slave};
+        expand_node(f[j / 3], j % 3, b.Ptm[r][j], index, x0, x1, path, pt);
+      }
       for (int k = 0; k < 2; ++k) {
         p.cols.push_back(q[k]);
         p.weights.push_back(b.Pq[r][k]);

@@ -32,6 +32,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<GO> dummies_;
   bool frictionless_ = false;  ///< any active frictionless slave on any rank
   std::vector<double> x0_;     ///< positions at t_n (frictionless)
+  ActiveIndex index_;          ///< every rank's active entries (chains)
 };
 
 }  // namespace emc::contact

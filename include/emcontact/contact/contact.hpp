@@ -2,6 +2,7 @@
 // The active set of contact (ALGORITHM.md §4, §6) and the rows it adds to the elimination
 // operator P (§3). Each rank handles the slave nodes it owns; positions are replicated.
 #include <array>
+#include <map>
 #include <vector>
 
 #include "emcontact/contact/pairs.hpp"
@@ -18,6 +19,13 @@ struct Active {
   double xi[2] = {0, 0};
   bool off = false;  ///< frictionless: outside every facet by more than tol_f (released at the end)
   bool operator<(const Active& o) const { return slave < o.slave; }
+};
+
+/// Every rank's active entries by slave node (replicated), to compose chains (§3): a master
+/// node that is itself an active slave elsewhere contributes its own row of P.
+struct ActiveIndex {
+  std::map<int, Active> by_slave;
+  mutable int cycles = 0;  ///< chains that looped back and were cut
 };
 
 struct StepContactStats {
@@ -50,16 +58,26 @@ class Contact {
                                     const std::vector<double>& x1,
                                     const std::vector<Active>& active) const;
 
+  /// All ranks' active entries (collective).
+  ActiveIndex gather(const std::vector<Active>& mine) const;
+
   /// Rows of P for the active stick slaves (frictionless ones are skipped) (du_s = N du_m, §3-§4) and their dummy dofs;
   /// columns of fixed master dofs are dropped (their column of P is zero).
-  void constraint_rows(const std::vector<Active>& active, std::vector<linalg::PRow>& rows,
-                       std::vector<GO>& dummies) const;
+  void constraint_rows(const std::vector<Active>& active, const ActiveIndex& index,
+                       const std::vector<double>& x0, const std::vector<double>& x1,
+                       std::vector<linalg::PRow>& rows, std::vector<GO>& dummies) const;
 
   /// The facet nodes' coordinates of an active entry in configuration x.
   void facet_coords(const Active& a, const std::vector<double>& x, double xm[3][3]) const;
+  /// Adds w du_{node,c} to row r in terms of q: the dof itself if free, nothing if rigid or
+  /// fixed, or the node's own row of P if it is an active slave (chains, §3; a cycle is cut).
+  void expand_node(int node, int c, double w, const ActiveIndex& index,
+                   const std::vector<double>& x0, const std::vector<double>& x1,
+                   std::vector<int>& path, linalg::PRow& r) const;
   /// Frictionless (§5): adds P, Pt and X of the active frictionless slaves at the state
   /// (x0, x1), with g the contactless residual; dummy_beta gets (dummy dof, beta).
-  void frictionless_rows(const std::vector<Active>& active, const std::vector<double>& x0,
+  void frictionless_rows(const std::vector<Active>& active, const ActiveIndex& index,
+                         const std::vector<double>& x0,
                          const std::vector<double>& x1, const Vector& g, const Matrix& A,
                          std::vector<linalg::PRow>& rows, std::vector<linalg::PRow>& pt_rows,
                          std::vector<linalg::Entry>& X,
