@@ -14,7 +14,10 @@ struct ElementState {
 };
 
 /// r[12]: element residual; A (optional): element Newton matrix; scale[12] (optional): sum of
-/// the absolute values of the four terms of g, a bound for its round-off (§1 Newton tolerance).
+/// the absolute values of the four terms of g plus the force that the round-off of the
+/// displacements themselves causes in a stiff element (V_e (lambda + 2 mu) |G_A| sum_B |u_B| |G_B|,
+/// which dominates for stiff bodies in rigid motion): a bound for g's round-off (§1 Newton
+/// tolerance, which is 100 eps times it).
 KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m,
                                         double rho, const double grav[3], Integrator integ,
                                         double dt, const ElementState& s, double r[12],
@@ -26,14 +29,24 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
   mass_times(rho, Ve, du, Mdu);
   mass_times(rho, Ve, s.V0, MV);
   const double c2 = 2.0 / (dt * dt), c1 = 2.0 / dt;
+  double gnorm[4], ug = 0;
+  for (int a = 0; a < 4; ++a) {
+    gnorm[a] = Kokkos::Experimental::sqrt(G[a][0] * G[a][0] + G[a][1] * G[a][1] + G[a][2] * G[a][2]);
+    const double un = Kokkos::Experimental::sqrt(s.u1[a][0] * s.u1[a][0] + s.u1[a][1] * s.u1[a][1] +
+                                                 s.u1[a][2] * s.u1[a][2]);
+    ug += un * gnorm[a];
+  }
+  const double stiff = Ve * (Kokkos::Experimental::fabs(m.lambda) + 2 * m.mu) * ug;
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) {
       const double fext = rho * Ve * grav[i] / 4.0;
       const double fint = r[3 * a + i];
       r[3 * a + i] = c2 * Mdu[a][i] - c1 * MV[a][i] + fint - fext;
       if (scale)
-        scale[3 * a + i] = Kokkos::Experimental::fabs(c2 * Mdu[a][i]) + Kokkos::Experimental::fabs(c1 * MV[a][i]) +
-                           Kokkos::Experimental::fabs(fint) + Kokkos::Experimental::fabs(fext);
+        scale[3 * a + i] = Kokkos::Experimental::fabs(c2 * Mdu[a][i]) +
+                           Kokkos::Experimental::fabs(c1 * MV[a][i]) +
+                           Kokkos::Experimental::fabs(fint) + Kokkos::Experimental::fabs(fext) +
+                           stiff * gnorm[a];
     }
   if (A == nullptr) return;
   for (int a = 0; a < 4; ++a)

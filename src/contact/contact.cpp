@@ -70,7 +70,9 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
           const int s = mine[k];
           if (busy.count(s)) return;
           const Hit h1 = grid1.locate(&x1[3 * s]);
-          if (h1.facet < 0 || !(h1.gap < 0 && h1.gap > -pr.dmax)) return;
+          // penetration beyond round-off (1e-12 of the activation depth): a node resting
+          // exactly on the master is not activated by noise
+          if (h1.facet < 0 || !(h1.gap < -1e-12 * pr.dmax && h1.gap > -pr.dmax)) return;
           Hit h0;
           if (pr.kind == Kind::full_stick) {  // §4: xi = CPP of x_{s,n} at t_n
             h0 = grid0.locate(&x0[3 * s], h1.facet, 1e-3);
