@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 
 namespace emc::time {
@@ -29,6 +30,12 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
 
 NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
   last_ = iterate(u0, V0, dt, u1);
+  static const bool trace = std::getenv("EMC_NEWTON_TRACE") != nullptr;
+  if (trace && disc_.comm()->getRank() == 0) {  // debugging aid: residual history per solve
+    std::fprintf(stderr, "newton %s:", last_.converged ? "converged" : "failed");
+    for (double r : last_.residuals) std::fprintf(stderr, " %.2e", r);
+    std::fprintf(stderr, "\n");
+  }
   return last_;
 }
 
