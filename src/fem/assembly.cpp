@@ -8,18 +8,6 @@
 
 namespace emc::fem {
 
-namespace {
-
-using Dofs2D = Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace>;
-
-template <class View, class Lid>
-KOKKOS_INLINE_FUNCTION void gather(const View& v, const Lid& lid, int k, double out[4][3]) {
-  for (int a = 0; a < 4; ++a)
-    for (int i = 0; i < 3; ++i) out[a][i] = v(3 * lid(k, a) + i, 0);
-}
-
-}  // namespace
-
 AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const Vector& u1,
                                       double dt, FEMatrix* A, Vector& r, Vector* scale) const {
   auto u0o = new_overlap_vector(), V0o = new_overlap_vector(), u1o = new_overlap_vector();
@@ -40,29 +28,20 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
     auto vs = so.getLocalViewDevice(Tpetra::Access::ReadWrite);
     typename FEMatrix::local_matrix_device_type lcl;
     if (want_matrix) lcl = A->getLocalMatrixDevice();
-    // copies of the members: never capture `this` in a device lambda
-    auto G = G_;
-    auto Ve = Ve_;
-    auto lam = lambda_;
-    auto mu = mu_;
-    auto rho = rho_;
-    auto lid = node_lid_;
-    auto col = col_lid_;
-    const double grav[3] = {model_.gravity[0], model_.gravity[1], model_.gravity[2]};
-    const double g0 = grav[0], g1 = grav[1], g2 = grav[2];
+    const ElementViews ev = ev_;  // by value: never capture `this` in a device lambda
+    const double g0 = model_.gravity[0], g1 = model_.gravity[1], g2 = model_.gravity[2];
     const auto integ = model_.integrator;
-    const int ne = static_cast<int>(Ve.extent(0));
+    const int ne = ev.size();
     Kokkos::MinLoc<double, int>::value_type worst;
     Kokkos::parallel_reduce(
         "emcontact::fem::em_tet4", Kokkos::RangePolicy<ExecSpace>(0, ne),
         KOKKOS_LAMBDA(const int k, Kokkos::MinLoc<double, int>::value_type& mn) {
           kernels::ElementState s;
-          gather(vu0, lid, k, s.u0);
-          gather(vV0, lid, k, s.V0);
-          gather(vu1, lid, k, s.u1);
+          ev.gather(vu0, k, s.u0);
+          ev.gather(vV0, k, s.V0);
+          ev.gather(vu1, k, s.u1);
           double Gk[4][3];
-          for (int a = 0; a < 4; ++a)
-            for (int i = 0; i < 3; ++i) Gk[a][i] = G(k, a, i);
+          ev.gradients(k, Gk);
           const double gk[3] = {g0, g1, g2};
           const double detF = kernels::tet4_detF(Gk, s.u1);
           if (detF < mn.val) {
@@ -73,20 +52,19 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
           if (want_matrix)
             for (int p = 0; p < 12; ++p)
               for (int q = 0; q < 12; ++q) Ae[p][q] = 0;
-          kernels::newton_tet4(Gk, Ve(k), kernels::Lame{lam(k), mu(k)}, rho(k), gk, integ, dt, s,
-                               re, want_matrix ? Ae : nullptr, want_scale ? se : nullptr);
+          kernels::newton_tet4(Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, integ, dt, s, re,
+                               want_matrix ? Ae : nullptr, want_scale ? se : nullptr);
           int cols[12];
-          for (int q = 0; q < 12; ++q) cols[q] = col(k, q);
+          for (int q = 0; q < 12; ++q) cols[q] = ev.col_lid(k, q);
           for (int a = 0; a < 4; ++a)
             for (int i = 0; i < 3; ++i) {
-              const int row = 3 * lid(k, a) + i;
+              const int row = 3 * ev.node_lid(k, a) + i;
               Kokkos::atomic_add(&vr(row, 0), re[3 * a + i]);
               if (want_scale) Kokkos::atomic_add(&vs(row, 0), se[3 * a + i]);
               if (want_matrix) lcl.sumIntoValues(row, cols, 12, Ae[3 * a + i], false, true);
             }
         },
         Kokkos::MinLoc<double, int>(worst));
-    (void)grav;
     AssemblyInfo info;
     info.min_detF = ne > 0 ? worst.val : 1e300;
     info.worst_tet = ne > 0 ? part_.my_tets[worst.loc] : -1;
@@ -117,30 +95,21 @@ kernels::Monitors Discretization::monitors(const Vector& u, const Vector& V) con
   // element-wise sums: every element counted once, whichever rank owns its nodes
   auto vu = uo->getLocalViewDevice(Tpetra::Access::ReadOnly);
   auto vV = Vo->getLocalViewDevice(Tpetra::Access::ReadOnly);
-  auto X = X_;
-  auto G = G_;
-  auto Ve = Ve_;
-  auto lam = lambda_;
-  auto mu = mu_;
-  auto rho = rho_;
-  auto lid = node_lid_;
+  const ElementViews ev = ev_;
   const double g0 = model_.gravity[0], g1 = model_.gravity[1], g2 = model_.gravity[2];
-  const int ne = static_cast<int>(Ve.extent(0));
+  const int ne = ev.size();
   kernels::Monitors sum;
   Kokkos::parallel_reduce(
       "emcontact::fem::monitors_tet4", Kokkos::RangePolicy<ExecSpace>(0, ne),
       KOKKOS_LAMBDA(const int k, kernels::Monitors& m) {
         double xk[4][3], Gk[4][3], uk[4][3], Vk[4][3];
         for (int a = 0; a < 4; ++a)
-          for (int i = 0; i < 3; ++i) {
-            xk[a][i] = X(k, a, i);
-            Gk[a][i] = G(k, a, i);
-          }
-        gather(vu, lid, k, uk);
-        gather(vV, lid, k, Vk);
+          for (int i = 0; i < 3; ++i) xk[a][i] = ev.X(k, a, i);
+        ev.gradients(k, Gk);
+        ev.gather(vu, k, uk);
+        ev.gather(vV, k, Vk);
         const double gk[3] = {g0, g1, g2};
-        kernels::monitors_tet4(xk, Gk, Ve(k), kernels::Lame{lam(k), mu(k)}, rho(k), gk, uk, Vk,
-                               m);
+        kernels::monitors_tet4(xk, Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, uk, Vk, m);
       },
       sum);
   double local[13] = {sum.kinetic, sum.elastic, sum.potential, sum.L[0],      sum.L[1],
@@ -167,21 +136,17 @@ Teuchos::RCP<Vector> Discretization::von_mises(const Vector& u) const {
   auto out = Teuchos::rcp(new Vector(elements_));
   auto vu = uo->getLocalViewDevice(Tpetra::Access::ReadOnly);
   auto vm = out->getLocalViewDevice(Tpetra::Access::OverwriteAll);
-  auto G = G_;
-  auto lam = lambda_;
-  auto mu = mu_;
-  auto lid = node_lid_;
-  const int ne = static_cast<int>(G.extent(0));
+  const ElementViews ev = ev_;
+  const int ne = ev.size();
   Kokkos::parallel_for(
       "emcontact::fem::von_mises_tet4", Kokkos::RangePolicy<ExecSpace>(0, ne),
       KOKKOS_LAMBDA(const int k) {
         double Gk[4][3], uk[4][3], F[3][3], E[3][3], S[3][3];
-        for (int a = 0; a < 4; ++a)
-          for (int i = 0; i < 3; ++i) Gk[a][i] = G(k, a, i);
-        gather(vu, lid, k, uk);
+        ev.gradients(k, Gk);
+        ev.gather(vu, k, uk);
         kernels::deformation_gradient(Gk, uk, F);
         kernels::green_strain(F, E);
-        kernels::svk_stress(kernels::Lame{lam(k), mu(k)}, E, S);
+        kernels::svk_stress(ev.lame(k), E, S);
         vm(k, 0) = kernels::von_mises(F, S, kernels::det3(F));
       });
   return out;

@@ -40,20 +40,21 @@ void Discretization::build_maps() {
 
 void Discretization::build_element_data() {
   const int ne = static_cast<int>(part_.my_tets.size());
-  X_ = decltype(X_)("emc::X", ne);
-  G_ = decltype(G_)("emc::G", ne);
-  Ve_ = decltype(Ve_)("emc::Ve", ne);
-  lambda_ = decltype(lambda_)("emc::lambda", ne);
-  mu_ = decltype(mu_)("emc::mu", ne);
-  rho_ = decltype(rho_)("emc::rho", ne);
-  node_lid_ = decltype(node_lid_)("emc::node_lid", ne);
-  auto X = Kokkos::create_mirror_view(X_);
-  auto G = Kokkos::create_mirror_view(G_);
-  auto Ve = Kokkos::create_mirror_view(Ve_);
-  auto lam = Kokkos::create_mirror_view(lambda_);
-  auto mu = Kokkos::create_mirror_view(mu_);
-  auto rho = Kokkos::create_mirror_view(rho_);
-  auto lid = Kokkos::create_mirror_view(node_lid_);
+  auto& ev = ev_;
+  ev.X = decltype(ev.X)("emc::X", ne);
+  ev.G = decltype(ev.G)("emc::G", ne);
+  ev.Ve = decltype(ev.Ve)("emc::Ve", ne);
+  ev.lambda = decltype(ev.lambda)("emc::lambda", ne);
+  ev.mu = decltype(ev.mu)("emc::mu", ne);
+  ev.rho = decltype(ev.rho)("emc::rho", ne);
+  ev.node_lid = decltype(ev.node_lid)("emc::node_lid", ne);
+  auto X = Kokkos::create_mirror_view(ev.X);
+  auto G = Kokkos::create_mirror_view(ev.G);
+  auto Ve = Kokkos::create_mirror_view(ev.Ve);
+  auto lam = Kokkos::create_mirror_view(ev.lambda);
+  auto mu = Kokkos::create_mirror_view(ev.mu);
+  auto rho = Kokkos::create_mirror_view(ev.rho);
+  auto lid = Kokkos::create_mirror_view(ev.node_lid);
   for (int k = 0; k < ne; ++k) {
     const int e = part_.my_tets[k];
     double x[4][3], g[4][3];
@@ -74,19 +75,19 @@ void Discretization::build_element_data() {
     mu(k) = l.mu;
     rho(k) = b.density;
   }
-  Kokkos::deep_copy(X_, X);
-  Kokkos::deep_copy(G_, G);
-  Kokkos::deep_copy(Ve_, Ve);
-  Kokkos::deep_copy(lambda_, lam);
-  Kokkos::deep_copy(mu_, mu);
-  Kokkos::deep_copy(rho_, rho);
-  Kokkos::deep_copy(node_lid_, lid);
+  Kokkos::deep_copy(ev.X, X);
+  Kokkos::deep_copy(ev.G, G);
+  Kokkos::deep_copy(ev.Ve, Ve);
+  Kokkos::deep_copy(ev.lambda, lam);
+  Kokkos::deep_copy(ev.mu, mu);
+  Kokkos::deep_copy(ev.rho, rho);
+  Kokkos::deep_copy(ev.node_lid, lid);
 }
 
 void Discretization::build_graph() {
   const int ne = static_cast<int>(part_.my_tets.size());
   const int nn = static_cast<int>(overlap_->getNodeNumElements() / 3);
-  auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), node_lid_);
+  auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ev_.node_lid);
   // node adjacency from my elements: sorted unique (row, col) node pairs
   std::vector<std::pair<int, int>> pairs;
   pairs.reserve(16 * static_cast<std::size_t>(ne));
@@ -119,15 +120,15 @@ void Discretization::build_graph() {
   }
   graph_->endAssembly();
 
-  col_lid_ = decltype(col_lid_)("emc::col_lid", ne);
-  auto col = Kokkos::create_mirror_view(col_lid_);
+  ev_.col_lid = decltype(ev_.col_lid)("emc::col_lid", ne);
+  auto col = Kokkos::create_mirror_view(ev_.col_lid);
   auto colmap = graph_->getColMap();
   for (int k = 0; k < ne; ++k)
     for (int a = 0; a < 4; ++a) {
       const GO node = overlap_->getGlobalElement(3 * lid(k, a)) / 3;
       for (int c = 0; c < 3; ++c) col(k, 3 * a + c) = colmap->getLocalElement(dof_gid(node, c));
     }
-  Kokkos::deep_copy(col_lid_, col);
+  Kokkos::deep_copy(ev_.col_lid, col);
 }
 
 void Discretization::to_overlap(const Vector& owned, Vector& overlap) const {

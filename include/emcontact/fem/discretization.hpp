@@ -14,6 +14,27 @@ namespace emc::fem {
 /// Dof numbering: global dof 3 n + c of node n, component c.
 inline GO dof_gid(long long node, int c) { return 3 * node + c; }
 
+/// Per local element data in Kokkos views, copied by value into kernels (never `this`).
+struct ElementViews {
+  Kokkos::View<double* [4][3], ExecSpace> X, G;  ///< reference coordinates, shape gradients
+  Kokkos::View<double*, ExecSpace> Ve, lambda, mu, rho;
+  Kokkos::View<int* [4], ExecSpace> node_lid;  ///< node index in the overlap map (dof 3k+c)
+  Kokkos::View<int* [12], ExecSpace> col_lid;  ///< dof columns in the graph's column map
+
+  int size() const { return static_cast<int>(Ve.extent(0)); }
+  KOKKOS_INLINE_FUNCTION void gradients(int k, double Gk[4][3]) const {
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) Gk[a][i] = G(k, a, i);
+  }
+  KOKKOS_INLINE_FUNCTION kernels::Lame lame(int k) const { return {lambda(k), mu(k)}; }
+  /// The element's values of an overlap vector (3 per node).
+  template <class View>
+  KOKKOS_INLINE_FUNCTION void gather(const View& v, int k, double out[4][3]) const {
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) out[a][i] = v(3 * node_lid(k, a) + i, 0);
+  }
+};
+
 struct AssemblyInfo {
   double min_detF = 1;      ///< smallest det F_{n+1} over all elements (global)
   long long worst_tet = -1; ///< global id (0-based) of the element with that det F
@@ -55,11 +76,7 @@ class Discretization {
   Teuchos::RCP<const Import> importer_;
   Teuchos::RCP<const Export> exporter_;
   Teuchos::RCP<FEGraph> graph_;
-  // per local element
-  Kokkos::View<double* [4][3], ExecSpace> X_, G_;
-  Kokkos::View<double*, ExecSpace> Ve_, lambda_, mu_, rho_;
-  Kokkos::View<int* [4], ExecSpace> node_lid_;  ///< node index in the overlap map (dof = 3k+c)
-  Kokkos::View<int* [12], ExecSpace> col_lid_;  ///< dof columns in the graph's column map
+  ElementViews ev_;
 
   void build_maps();
   void build_element_data();
