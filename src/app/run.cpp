@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <memory>
 
 #include "emcontact/app/meshes.hpp"
@@ -165,9 +166,11 @@ void plot_monitors(const std::string& dir) {
                  cmd.c_str());
 }
 
-double energy_scale(const output::MonitorRow& r0) {
-  const double s = std::fabs(r0.total);
-  return s > 0 ? s : std::max(r0.kinetic + r0.elastic + std::fabs(r0.potential), 1e-300);
+/// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
+/// at rest under a load) the largest K + W + |Pi| so far.
+double energy_scale(const output::MonitorRow& r0, const output::MonitorRow& r, double scale) {
+  if (r0.total != 0) return std::fabs(r0.total);
+  return std::max({scale, r.kinetic + r.elastic + std::fabs(r.potential), 1e-300});
 }
 
 }  // namespace
@@ -216,13 +219,14 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   comm->barrier();
   sum.setup_seconds = clock.totalElapsedTime(true);
   const auto row0 = monitor_row(disc, state, time::StepReport{});
-  const double escale = energy_scale(row0);
+  double escale = energy_scale(row0, row0, 0.0);
   if (root) w.monitors->append(row0);
   w.fields_frame(disc, state);
   try {
     while (!stepper.finished()) {
       const time::StepReport rep = stepper.advance();
       const auto row = monitor_row(disc, state, rep);
+      escale = energy_scale(row0, row, escale);
       const double err = std::fabs(row.total - row0.total) / escale;
       sum.max_energy_error = std::max(sum.max_energy_error, err);
       sum.newton_iterations += rep.newton_iterations;
