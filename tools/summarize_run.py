@@ -25,6 +25,7 @@ def summarize(rows):
         ref = norm(vec(r0, q))
         d = max(norm([a - b for a, b in zip(vec(r, q), vec(r0, q))]) for r in rows)
         s[q + '_drift_abs'] = d
+        s[q + '_initial'] = ref
         s[q + '_drift'] = d / ref if ref > 0 else float('nan')
         for c in 'xyz':
             s[q + c + '_drift_abs'] = max(abs(r[q + c] - r0[q + c]) for r in rows)

@@ -1,0 +1,141 @@
+// Kernel benchmarks (issue: speed and scaling). Counters are per core: Kokkos is Serial in
+// Debian's Trilinos, so one process = one core.
+//   BM_EmTet4          energy-momentum force + exact 12x12 tangent of one element (kernel only)
+//   BM_Assembly        the whole assembly driver: import, kernels, scatter into the FECrsMatrix
+//   BM_ContactSearch   slave-node queries (grid + CPP) against a surface of about 100k facets
+#include <benchmark/benchmark.h>
+
+#include <Tpetra_Core.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "emcontact/contact/search.hpp"
+#include "emcontact/fem/discretization.hpp"
+#include "kernels/newton_tet4.hpp"
+
+namespace k = emc::kernels;
+
+static void BM_EmTet4(benchmark::State& state) {
+  double X[4][3] = {{0, 0, 0}, {1, 0.1, 0}, {0.1, 1, 0.1}, {0, 0.2, 1}}, G[4][3];
+  const double Ve = k::tet_gradients(X, G);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> d(-0.1, 0.1);
+  k::ElementState s;
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) {
+      s.u0[a][i] = d(rng);
+      s.u1[a][i] = d(rng);
+      s.V0[a][i] = d(rng);
+    }
+  const double grav[3] = {0, 0, -9.81};
+  double r[12], A[12][12], sc[12];
+  for (auto _ : state) {
+    for (int p = 0; p < 12; ++p)
+      for (int q = 0; q < 12; ++q) A[p][q] = 0;
+    k::newton_tet4(G, Ve, k::lame(1e6, 0.3), 1000, grav, k::Integrator::energy_momentum, 1e-3, s,
+                   r, A, sc);
+    benchmark::DoNotOptimize(A);
+    s.u1[0][0] += 1e-12;
+  }
+  state.counters["tets_per_s"] = benchmark::Counter(state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_EmTet4);
+
+/// A structured box of n^3 cubes split into 6 tets each (Kuhn), as a one-body model.
+static emc::fem::Model box_model(int n) {
+  emc::fem::Model m;
+  auto id = [n](int i, int j, int l) { return (l * (n + 1) + j) * (n + 1) + i; };
+  for (int l = 0; l <= n; ++l)
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) m.X.insert(m.X.end(), {double(i) / n, double(j) / n, double(l) / n});
+  const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (int l = 0; l < n; ++l)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        for (const auto& p : perm) {
+          int c[3] = {i, j, l};
+          int v[4];
+          v[0] = id(c[0], c[1], c[2]);
+          for (int s = 0; s < 3; ++s) {
+            ++c[p[s]];
+            v[s + 1] = id(c[0], c[1], c[2]);
+          }
+          double x[4][3];
+          for (int a = 0; a < 4; ++a)
+            for (int q = 0; q < 3; ++q) x[a][q] = m.X[3 * v[a] + q];
+          if (k::tet_volume(x) < 0) std::swap(v[1], v[2]);
+          m.tets.insert(m.tets.end(), v, v + 4);
+        }
+  m.body_of_tet.assign(m.num_tets(), 0);
+  emc::fem::Body b;
+  b.name = "box";
+  b.node_end = m.num_nodes();
+  b.tet_end = m.num_tets();
+  b.young = 1e6;
+  b.poisson = 0.3;
+  b.density = 1000;
+  m.bodies.push_back(b);
+  m.fixed.assign(m.num_nodes(), 0);
+  return m;
+}
+
+static void BM_Assembly(benchmark::State& state) {
+  const emc::fem::Model m = box_model(static_cast<int>(state.range(0)));
+  emc::fem::Discretization disc(m, Tpetra::getDefaultComm());
+  emc::Vector u0(disc.owned_map()), V0(disc.owned_map()), u1(disc.owned_map()), r(disc.owned_map()),
+      sc(disc.owned_map());
+  u1.randomize();
+  u1.scale(1e-3);
+  V0.randomize();
+  emc::FEMatrix A(disc.graph());
+  for (auto _ : state) disc.assemble(u0, V0, u1, 1e-3, &A, r, &sc);
+  state.counters["tets"] = m.num_tets();
+  state.counters["tets_per_s"] =
+      benchmark::Counter(double(state.iterations()) * m.num_tets(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Assembly)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
+
+static void BM_ContactSearch(benchmark::State& state) {
+  // a bumpy surface of 2 n^2 facets (n = 224: about 100k) and points near it
+  const int n = static_cast<int>(state.range(0));
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double px = double(i) / n, py = double(j) / n;
+      x.insert(x.end(), {px, py, 0.05 * std::sin(6 * px) * std::cos(4 * py)});
+    }
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> d(0, 1), dz(-0.002, 0.002);
+  std::vector<double> q;
+  for (int t = 0; t < 100000; ++t) {
+    const double px = d(rng), py = d(rng);
+    q.insert(q.end(), {px, py, 0.05 * std::sin(6 * px) * std::cos(4 * py) + dz(rng)});
+  }
+  const double h = 0.5 / n;
+  long found = 0;
+  for (auto _ : state) {
+    emc::contact::FacetGrid grid(facets, x, h);  // rebuilt every step in the solver
+    for (std::size_t t = 0; t < q.size() / 3; ++t) found += grid.locate(&q[3 * t]).facet >= 0;
+  }
+  benchmark::DoNotOptimize(found);
+  state.counters["facets"] = facets.size();
+  state.counters["queries_per_s"] =
+      benchmark::Counter(double(state.iterations()) * q.size() / 3, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ContactSearch)->Arg(224)->Unit(benchmark::kMillisecond);
+
+int main(int argc, char** argv) {
+  Tpetra::ScopeGuard scope(&argc, &argv);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
