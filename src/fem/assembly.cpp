@@ -4,6 +4,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include "emcontact/fem/discretization.hpp"
+#include "emcontact/error.hpp"
 #include "kernels/newton_tet4.hpp"
 
 namespace emc::fem {
@@ -27,7 +28,13 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
     auto vr = ro.getLocalViewDevice(Tpetra::Access::ReadWrite);
     auto vs = so.getLocalViewDevice(Tpetra::Access::ReadWrite);
     typename FEMatrix::local_matrix_device_type lcl;
-    if (want_matrix) lcl = A->getLocalMatrixDevice();
+    Kokkos::View<double*, ExecSpace> vals;
+    if (want_matrix) {
+      lcl = A->getLocalMatrixDevice();
+      vals = lcl.values;
+      if (offsets_.extent(0) != static_cast<std::size_t>(ev_.size())) build_offsets(lcl);
+    }
+    const auto off = offsets_;
     const ElementViews ev = ev_;  // by value: never capture `this` in a device lambda
     const double g0 = model_.gravity[0], g1 = model_.gravity[1], g2 = model_.gravity[2];
     const auto integ = model_.integrator;
@@ -54,14 +61,14 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
               for (int q = 0; q < 12; ++q) Ae[p][q] = 0;
           kernels::newton_tet4(Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, integ, dt, s, re,
                                want_matrix ? Ae : nullptr, want_scale ? se : nullptr);
-          int cols[12];
-          for (int q = 0; q < 12; ++q) cols[q] = ev.col_lid(k, q);
           for (int a = 0; a < 4; ++a)
             for (int i = 0; i < 3; ++i) {
               const int row = 3 * ev.node_lid(k, a) + i;
               Kokkos::atomic_add(&vr(row, 0), re[3 * a + i]);
               if (want_scale) Kokkos::atomic_add(&vs(row, 0), se[3 * a + i]);
-              if (want_matrix) lcl.sumIntoValues(row, cols, 12, Ae[3 * a + i], false, true);
+              if (want_matrix)  // precomputed positions in the CRS values: no column search
+                for (int q = 0; q < 12; ++q)
+                  Kokkos::atomic_add(&vals(off(k, 3 * a + i, q)), Ae[3 * a + i][q]);
             }
         },
         Kokkos::MinLoc<double, int>(worst));
@@ -86,6 +93,30 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
     }
     return info;
   }
+}
+
+// Position of every element entry (p, q) in the values of the (owned+shared) local matrix,
+// found once per graph: the scatter then adds without searching the row.
+void Discretization::build_offsets(const FEMatrix::local_matrix_device_type& lcl) const {
+  const int ne = ev_.size();
+  offsets_ = decltype(offsets_)("emc::offsets", ne);
+  auto h = Kokkos::create_mirror_view(offsets_);
+  auto rows = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lcl.graph.row_map);
+  auto ents = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lcl.graph.entries);
+  auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ev_.node_lid);
+  auto col = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ev_.col_lid);
+  for (int k = 0; k < ne; ++k)
+    for (int p = 0; p < 12; ++p) {
+      const int row = 3 * lid(k, p / 3) + p % 3;
+      for (int q = 0; q < 12; ++q) {
+        int pos = -1;
+        for (auto e = rows(row); e < rows(row + 1); ++e)
+          if (ents(e) == col(k, q)) pos = static_cast<int>(e);
+        if (pos < 0) throw Error("internal: element entry missing from the FE graph");
+        h(k, p, q) = pos;
+      }
+    }
+  Kokkos::deep_copy(offsets_, h);
 }
 
 kernels::Monitors Discretization::monitors(const Vector& u, const Vector& V) const {

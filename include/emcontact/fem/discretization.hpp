@@ -77,6 +77,9 @@ class Discretization {
   Teuchos::RCP<const Export> exporter_;
   Teuchos::RCP<FEGraph> graph_;
   ElementViews ev_;
+  mutable Kokkos::View<int* [12][12], ExecSpace> offsets_;  ///< element entries in the values
+
+  void build_offsets(const FEMatrix::local_matrix_device_type& lcl) const;
 
   void build_maps();
   void build_element_data();

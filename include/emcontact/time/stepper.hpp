@@ -57,6 +57,9 @@ class Stepper {
   State& s_;
   double dt_, end_;
   int max_cuts_, grow_after_;
+  Teuchos::RCP<Vector> last_increment_;  ///< u_n - u_{n-1}, for the predictor
+  double last_h_ = 0;
+  int last_iterations_ = 0;   ///< Newton iterations of the last accepted solve
   std::unique_ptr<contact::ActiveConstraints> constraints_;
 
   void apply(std::vector<contact::Active>& active);
