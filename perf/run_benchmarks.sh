@@ -3,7 +3,7 @@
 # perf/README.md. Usage: bash perf/run_benchmarks.sh [--short]   (--short: what CI can afford)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build-perf -G Ninja -DCMAKE_BUILD_TYPE=Release -DEMC_ENABLE_PERF=ON -DEMC_ENABLE_TESTS=OFF > /dev/null
+cmake -S . -B build-perf -G Ninja -DCMAKE_BUILD_TYPE=Release -DEMC_ENABLE_TESTS=OFF > /dev/null
 cmake --build build-perf -j "$(nproc)" --target bench_kernels
 min_time=1.0
 [ "${1:-}" = "--short" ] && min_time=0.05
