@@ -3,6 +3,8 @@
 // the FECrsMatrix and of overlap vectors, which Tpetra then exports to their owners.
 #include <Teuchos_CommHelpers.hpp>
 
+#include <algorithm>
+
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/error.hpp"
 #include "kernels/newton_tet4.hpp"
@@ -109,11 +111,13 @@ void Discretization::build_offsets(const FEMatrix::local_matrix_device_type& lcl
     for (int p = 0; p < 12; ++p) {
       const int row = 3 * lid(k, p / 3) + p % 3;
       for (int q = 0; q < 12; ++q) {
-        int pos = -1;
-        for (auto e = rows(row); e < rows(row + 1); ++e)
-          if (ents(e) == col(k, q)) pos = static_cast<int>(e);
-        if (pos < 0) throw Error("internal: element entry missing from the FE graph");
-        h(k, p, q) = pos;
+        // column indices are sorted within a row of a fill-complete local graph
+        const auto* b = ents.data() + rows(row);
+        const auto* e = ents.data() + rows(row + 1);
+        const auto* it = std::lower_bound(b, e, col(k, q));
+        if (it == e || *it != col(k, q))
+          throw Error("internal: element entry missing from the FE graph");
+        h(k, p, q) = static_cast<int>(it - ents.data());
       }
     }
   Kokkos::deep_copy(offsets_, h);
