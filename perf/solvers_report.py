@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""The linear solve per Newton iteration for each solver choice, on 1 and 2 ranks: the first
+steps of inputs/ball.xml (8k tets) and of its refined version (65k tets). Writes
+perf/results/solvers.json and the table in perf/README.md between <!-- solvers:begin --> and
+<!-- solvers:end -->.
+
+    /usr/bin/python3 perf/solvers_report.py [--build build] [--steps 20]
+"""
+import argparse, csv, datetime, json, os, re, subprocess, sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT='1', OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1')
+CHOICES = [('gmres', 'ilu'), ('gmres', 'schwarz'), ('gmres', 'muelu'), ('cg', 'ilu'), ('klu2', 'none')]
+
+
+def run(build, size, ranks, typ, prec, steps):
+    out = 'out/solver_%s_%s_%s_np%d' % (size, typ, prec, ranks)
+    cmd = ([] if ranks == 1 else ['mpirun', '--oversubscribe', '-np', str(ranks)]) + [
+        os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out,
+        '--set', 'Bodies/ball/Mesh/size=%s' % size, '--set', 'Time/end=%g' % (steps * 0.001),
+        '--set', 'Solver/Linear/type=%s' % typ, '--set', 'Solver/Linear/preconditioner=%s' % prec,
+        '--set', 'Output/every=0', '--set', 'Output/plot=false', '--set', 'Output/progress=false']
+    p = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT)
+    if p.returncode != 0:
+        return dict(size=size, ranks=ranks, type=typ, prec=prec, error=(p.stdout + p.stderr).strip().splitlines()[-1][:200])
+    m = re.search(r'emcontact: (\d+) tets.*?(\d+) steps to .*? \(([\d.]+) s/step', p.stdout)
+    tm = re.search(r'emcontact: linear solve\s+(.*)', p.stdout)
+    nums = re.findall(r'([\d.e+-]+) \(([\d.e+-]+)\)', tm[1])
+    solve_s, calls = float(nums[-2][0] if len(nums) >= 3 else nums[0][0]), float(nums[0][1])
+    pm = re.search(r'emcontact: preconditioner\s+([\d.e+-]+) \(([\d.e+-]+)\)', p.stdout)
+    with open(os.path.join(ROOT, out, 'monitors.csv')) as f:
+        rows = list(csv.DictReader(f))[1:]
+    its = sum(int(r['linear_iterations']) for r in rows) / max(1, sum(int(r['newton_iterations']) for r in rows))
+    return dict(size=size, ranks=ranks, type=typ, prec=prec, tets=int(m[1]), s_per_step=float(m[3]),
+                solve_per_newton=solve_s / calls, krylov_per_solve=its,
+                prec_setups=int(float(pm[2])) if pm else 0, prec_s=float(pm[1]) if pm else 0.0)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--build', default='build')
+    ap.add_argument('--steps', type=int, default=20)
+    ap.add_argument('--sizes', nargs='+', default=['0.0524', '0.026'])
+    a = ap.parse_args()
+    build = os.path.join(ROOT, a.build)
+    res = []
+    for size in a.sizes:
+        for typ, prec in CHOICES:
+            for ranks in (1, 2):
+                if typ == 'klu2' and (ranks > 1 or size != a.sizes[0]):
+                    continue  # one rank only; too slow to factor beyond small problems
+                res.append(run(build, size, ranks, typ, prec, a.steps))
+                print(res[-1], flush=True)
+    json.dump(dict(date=datetime.date.today().isoformat(), runs=res),
+              open(os.path.join(ROOT, 'perf', 'results', 'solvers.json'), 'w'), indent=1)
+    md = ['Measured %s by `/usr/bin/python3 perf/solvers_report.py` (%d steps of `inputs/ball.xml` from t = 0; '
+          'the time per linear solve is the maximum over ranks; the preconditioner is reused while it works).'
+          % (datetime.date.today(), a.steps), '',
+          '| tets | solver | ranks | s per linear solve | Krylov its per solve | preconditioner setups (s) | wall s/step |',
+          '|---|---|---|---|---|---|---|']
+    for r in res:
+        if 'error' in r:
+            md.append('| %s | %s + %s | %d | failed: %s | | | |' % (r['size'], r['type'], r['prec'], r['ranks'], r['error']))
+            continue
+        md.append('| %d | %s + %s | %d | %.4f | %.1f | %d (%.2f) | %.4f |' % (
+            r['tets'], r['type'], r['prec'], r['ranks'], r['solve_per_newton'], r['krylov_per_solve'],
+            r['prec_setups'], r['prec_s'], r['s_per_step']))
+    text = '\n'.join(md)
+    print(text)
+    p = os.path.join(ROOT, 'perf', 'README.md')
+    s = open(p).read()
+    if '<!-- solvers:begin -->' not in s:
+        s += '\n## Linear solvers\n<!-- solvers:begin -->\n<!-- solvers:end -->\n'
+    s = re.sub(r'(<!-- solvers:begin -->\n).*?(<!-- solvers:end -->)', lambda m: m[1] + text + '\n' + m[2], s, flags=re.S)
+    open(p, 'w').write(s)
+
+
+if __name__ == '__main__':
+    main()
