@@ -188,6 +188,16 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
   sim->solver =
       std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm);
+  // CG needs a symmetric matrix: the mid-point tangent without frictionless contact is; the
+  // energy-momentum tangent (ALGORITHM.md §1) and the frictionless P^T A Pt + X (§5) are not
+  bool frictionless = false;
+  for (const auto& pr : sim->contact->pairs()) frictionless |= pr.kind == contact::Kind::frictionless;
+  if (comm->getRank() == 0 && P.sublist("Solver").sublist("Linear").get<std::string>("type") == "cg" &&
+      (sim->model.integrator == kernels::Integrator::energy_momentum || frictionless))
+    std::fprintf(stderr,
+                 "warning: %s: Solver/Linear/type = cg on a non-symmetric Newton matrix "
+                 "(energy-momentum tangent or frictionless contact); gmres is the safe choice\n",
+                 opt.input.c_str());
   sim->newton = std::make_unique<time::Newton>(
       disc, *sim->elim, *sim->solver, time::newton_options(P.sublist("Solver").sublist("Newton")));
   sim->state.u = rcp(new Vector(disc.owned_map()));

@@ -20,9 +20,11 @@ void set_newton(Teuchos::ParameterList& pl) {
 }
 
 void set_linear(Teuchos::ParameterList& pl) {
-  pl.set("type", std::string("gmres"), "Linear solver.",
+  pl.set("type", std::string("gmres"),
+         "Linear solver: gmres; cg only for a symmetric Newton matrix (the midpoint integrator "
+         "without frictionless contact; otherwise the run warns); klu2, direct, one rank only.",
          string_choice("type", {"gmres", "cg", "klu2"},
-                       {"Belos GMRES (iterative)", "Belos conjugate gradients (iterative)",
+                       {"Belos GMRES (iterative)", "Belos conjugate gradients (iterative; only for a symmetric Newton matrix: the mid-point integrator without frictionless contact, otherwise the run warns)",
                         "Amesos2 KLU2 (direct)"}));
   pl.set("preconditioner", std::string("ilu"),
          "Preconditioner of the iterative solvers (ignored by klu2).",
