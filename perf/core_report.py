@@ -7,9 +7,9 @@ Usage (from the repository root, after building into build/):
     /usr/bin/python3 perf/core_report.py [--build build] [--no-readme]
 """
 import argparse, csv, datetime, json, os, platform, re, subprocess, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_util import ENV, ROOT, replace_section  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT='1', OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1')
 
 
 def run(build, xml, out, ranks=1, sets=()):
@@ -94,10 +94,7 @@ def main():
     text = '\n'.join(md)
     print(text)
     if not a.no_readme:
-        p = os.path.join(ROOT, 'README.md')
-        s = open(p).read()
-        s = re.sub(r'(<!-- core:begin -->\n).*?(<!-- core:end -->)', lambda m: m[1] + text + '\n' + m[2], s, flags=re.S)
-        open(p, 'w').write(s)
+        replace_section(os.path.join(ROOT, 'README.md'), 'core', text)
 
 
 if __name__ == '__main__':

@@ -9,7 +9,8 @@ Usage (from the repository root, after building):
 """
 import argparse, datetime, json, os, re, shutil, subprocess, sys, time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_util import ROOT, replace_section  # noqa: E402
 sys.path.insert(0, os.path.join(ROOT, 'tools'))
 from summarize_run import load, summarize  # noqa: E402
 
@@ -78,7 +79,7 @@ def main():
         md.append('| %s (%s) | %d | %d | %.0f | %.2f (%d) | %.1e | %s | %s |' % (
             name, r['date'], r['tets'], r['steps'], r['wall_s'], r['newton_per_step'], r['max_newton'], r['E_drift'],
             comps, ', '.join('%.3f-%.3f' % tuple(p) for p in r['contact_periods'])))
-    md += ['', 'Wall times were measured while other jobs shared the two cores. The hollow cylinders stay in '
+    md += ['', 'Wall times: one rank; other work ran on the second core during some of the runs. The hollow cylinders stay in '
            'contact to the end and need about 2.8 re-solves of the active set per step (11 Newton iterations '
            'per step): the cost to bring down in the speed work.', '']
     for name, _ in EXAMPLES:
@@ -86,10 +87,7 @@ def main():
             md.append('![%s: energies, L and J against time](docs/%s_energies.png)' % (name, name))
     text = '\n'.join(md)
     print(text)
-    p = os.path.join(ROOT, 'README.md')
-    s = open(p).read()
-    s = re.sub(r'(<!-- examples:begin -->\n).*?(<!-- examples:end -->)', lambda m: m[1] + text + '\n' + m[2], s, flags=re.S)
-    open(p, 'w').write(s)
+    replace_section(os.path.join(ROOT, 'README.md'), 'examples', text)
 
 
 if __name__ == '__main__':

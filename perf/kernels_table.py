@@ -2,8 +2,9 @@
 """Writes the kernel benchmark table (from Google Benchmark's JSON) into perf/README.md between
 <!-- kernels:begin --> and <!-- kernels:end -->."""
 import json, os, re, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_util import ROOT, replace_section  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 d = json.load(open(sys.argv[1]))
 ctx = d['context']
 rows = ['Measured %s on %s (%d CPUs at %s MHz; Kokkos Serial, one core per process) with '
@@ -19,7 +20,4 @@ for b in d['benchmarks']:
                                                       targets.get(name.split('/')[0], '-')))
 text = '\n'.join(rows)
 print(text)
-p = os.path.join(ROOT, 'perf', 'README.md')
-s = open(p).read()
-s = re.sub(r'(<!-- kernels:begin -->\n).*?(<!-- kernels:end -->)', lambda m: m[1] + text + '\n' + m[2], s, flags=re.S)
-open(p, 'w').write(s)
+replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'kernels', text)

@@ -7,9 +7,9 @@ between <!-- scaling:begin --> and <!-- scaling:end -->.
     /usr/bin/python3 perf/scaling_report.py [--build build] [--steps 10] [--sizes 0.0524 0.026 0.0129]
 """
 import argparse, datetime, json, os, re, subprocess, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_util import ENV, ROOT, replace_section  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT='1', OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1')
 TIMERS = ('assembly', 'elimination', 'linear solve', 'preconditioner', 'output')
 
 
@@ -68,12 +68,7 @@ def main():
             100 * eff, r['max_rss_mb'], 1024 * r['max_rss_mb'] / r['tets'] * r['ranks']))
     text = '\n'.join(md)
     print(text)
-    p = os.path.join(ROOT, 'perf', 'README.md')
-    s = open(p).read()
-    if '<!-- scaling:begin -->' not in s:
-        s += '\n## Whole runs: mesh size and ranks\n<!-- scaling:begin -->\n<!-- scaling:end -->\n'
-    s = re.sub(r'(<!-- scaling:begin -->\n).*?(<!-- scaling:end -->)', lambda m: m[1] + text + '\n' + m[2], s, flags=re.S)
-    open(p, 'w').write(s)
+    replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'scaling', text, '## Whole runs: mesh size and ranks')
 
 
 if __name__ == '__main__':

@@ -7,9 +7,9 @@ perf/results/solvers.json and the table in perf/README.md between <!-- solvers:b
     /usr/bin/python3 perf/solvers_report.py [--build build] [--steps 20]
 """
 import argparse, csv, datetime, json, os, re, subprocess, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_util import ENV, ROOT, replace_section  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT='1', OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1')
 CHOICES = [('gmres', 'ilu'), ('gmres', 'schwarz'), ('gmres', 'muelu'), ('cg', 'ilu'), ('klu2', 'none')]
 
 
@@ -67,12 +67,7 @@ def main():
             r['prec_setups'], r['prec_s'], r['s_per_step']))
     text = '\n'.join(md)
     print(text)
-    p = os.path.join(ROOT, 'perf', 'README.md')
-    s = open(p).read()
-    if '<!-- solvers:begin -->' not in s:
-        s += '\n## Linear solvers\n<!-- solvers:begin -->\n<!-- solvers:end -->\n'
-    s = re.sub(r'(<!-- solvers:begin -->\n).*?(<!-- solvers:end -->)', lambda m: m[1] + text + '\n' + m[2], s, flags=re.S)
-    open(p, 'w').write(s)
+    replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'solvers', text, '## Linear solvers')
 
 
 if __name__ == '__main__':
