@@ -7,6 +7,7 @@
 
 #include <Tpetra_Core.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -97,11 +98,9 @@ static void BM_Assembly(benchmark::State& state) {
 }
 BENCHMARK(BM_Assembly)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 
-static void BM_ContactSearch(benchmark::State& state) {
-  // a bumpy surface of 2 n^2 facets (n = 224: about 100k) and points near it
-  const int n = static_cast<int>(state.range(0));
-  std::vector<std::array<int, 3>> facets;
-  std::vector<double> x;
+/// A bumpy surface of 2 n^2 facets (n = 224: about 100k) and 100k points near it.
+static void bumpy_surface(int n, std::vector<std::array<int, 3>>& facets, std::vector<double>& x,
+                          std::vector<double>& q) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const double px = double(i) / n, py = double(j) / n;
@@ -115,11 +114,17 @@ static void BM_ContactSearch(benchmark::State& state) {
     }
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> d(0, 1), dz(-0.002, 0.002);
-  std::vector<double> q;
   for (int t = 0; t < 100000; ++t) {
     const double px = d(rng), py = d(rng);
     q.insert(q.end(), {px, py, 0.05 * std::sin(6 * px) * std::cos(4 * py) + dz(rng)});
   }
+}
+
+static void BM_ContactSearch(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x, q;
+  bumpy_surface(n, facets, x, q);
   const double h = 0.5 / n;
   long found = 0;
   for (auto _ : state) {
@@ -132,6 +137,47 @@ static void BM_ContactSearch(benchmark::State& state) {
       benchmark::Counter(double(state.iterations()) * q.size() / 3, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ContactSearch)->Arg(224)->Unit(benchmark::kMillisecond);
+
+// The queries alone, against a grid built once.
+static void BM_ContactQueries(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x, q;
+  bumpy_surface(n, facets, x, q);
+  emc::contact::FacetGrid grid(facets, x, 0.5 / n);
+  long found = 0;
+  for (auto _ : state)
+    for (std::size_t t = 0; t < q.size() / 3; ++t) found += grid.locate(&q[3 * t]).facet >= 0;
+  benchmark::DoNotOptimize(found);
+  state.counters["facets"] = facets.size();
+  state.counters["queries_per_s"] =
+      benchmark::Counter(double(state.iterations()) * q.size() / 3, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ContactQueries)->Arg(224)->Unit(benchmark::kMillisecond);
+
+// The same queries in spatial order (rows of 1/64 in y, then x), as slave nodes numbered
+// along the surface come: the facets a query needs are then in cache.
+static void BM_ContactQueriesOrdered(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x, q;
+  bumpy_surface(n, facets, x, q);
+  std::vector<int> order(q.size() / 3);
+  for (std::size_t t = 0; t < order.size(); ++t) order[t] = static_cast<int>(t);
+  auto key = [&](int t) { return std::make_pair(int(q[3 * t + 1] * 64), q[3 * t]); };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  std::vector<double> sorted;
+  for (int t : order) sorted.insert(sorted.end(), {q[3 * t], q[3 * t + 1], q[3 * t + 2]});
+  emc::contact::FacetGrid grid(facets, x, 0.5 / n);
+  long found = 0;
+  for (auto _ : state)
+    for (std::size_t t = 0; t < sorted.size() / 3; ++t) found += grid.locate(&sorted[3 * t]).facet >= 0;
+  benchmark::DoNotOptimize(found);
+  state.counters["facets"] = facets.size();
+  state.counters["queries_per_s"] =
+      benchmark::Counter(double(state.iterations()) * sorted.size() / 3, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ContactQueriesOrdered)->Arg(224)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
