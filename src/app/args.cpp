@@ -7,8 +7,11 @@ namespace emc::app {
 
 std::string usage() {
   return "usage: emcontact INPUT.xml [--set Section/Sub/name=value ...] [--output DIR]\n"
+         "                 [--restart DIR/checkpoint.h5]\n"
          "  --set     override any parameter of the input (repeatable), e.g. --set Time/end=0.5\n"
          "  --output  write monitors.csv and the fields to DIR instead of Output/directory\n"
+         "  --restart continue from a checkpoint (Output/checkpoint every); the monitors of DIR\n"
+         "            up to its step are kept and the run goes on from there\n"
          "Parameters are documented in inputs/README.md.";
 }
 
@@ -28,6 +31,8 @@ Options parse_args(int argc, char** argv) {
       o.overrides.push_back(value("--set"));
     } else if (a == "--output" || a.rfind("--output=", 0) == 0) {
       o.output_dir = value("--output");
+    } else if (a == "--restart" || a.rfind("--restart=", 0) == 0) {
+      o.restart = value("--restart");
     } else if (!a.empty() && a[0] == '-') {
       throw InputError("unknown option \"" + a + "\"\n" + usage());
     } else if (o.input.empty()) {

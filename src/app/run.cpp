@@ -10,12 +10,15 @@
 
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/app/progress.hpp"
+#include "emcontact/app/restart.hpp"
+#include "emcontact/app/root_gather.hpp"
 #include "emcontact/app/run.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/input/input.hpp"
+#include <Teuchos_CommHelpers.hpp>
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 #include "emcontact/output/atomic_file.hpp"
@@ -29,29 +32,6 @@ using Teuchos::RCP;
 using Teuchos::rcp;
 
 namespace {
-
-/// Gathers owned vectors (dofs or elements) to rank 0 in global order, for the output.
-class RootGather {
- public:
-  RootGather(RCP<const Map> owned, GO n_global) {
-    const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-    std::vector<GO> ids;
-    if (owned->getComm()->getRank() == 0)
-      for (GO g = 0; g < n_global; ++g) ids.push_back(g);
-    root_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(ids), 0, owned->getComm()));
-    import_ = rcp(new Import(owned, root_));
-  }
-  std::vector<double> operator()(const Vector& v) const {
-    Vector r(root_);
-    r.doImport(v, *import_, Tpetra::INSERT);
-    auto h = r.getLocalViewHost(Tpetra::Access::ReadOnly);
-    return std::vector<double>(h.data(), h.data() + h.extent(0));
-  }
-
- private:
-  RCP<const Map> root_;
-  RCP<const Import> import_;
-};
 
 /// Displacement fixed (Dirichlet) dofs that this rank owns (ALGORITHM.md §3: zero columns of P).
 std::vector<GO> owned_fixed_dofs(const fem::Discretization& disc) {
@@ -146,8 +126,8 @@ Writers make_writers(const fem::Discretization& disc, const std::string& dir, in
     output::make_directory(dir);
     w.monitors = std::make_unique<output::MonitorWriter>(dir + "/monitors.csv");
   }
+  w.dofs = std::make_unique<RootGather>(disc.owned_map(), 3LL * model.num_nodes());
   if (every > 0) {
-    w.dofs = std::make_unique<RootGather>(disc.owned_map(), 3LL * model.num_nodes());
     w.tets = std::make_unique<RootGather>(disc.element_map(), model.num_tets());
     if (root) {
       std::vector<long long> tets(model.tets.begin(), model.tets.end());
@@ -168,6 +148,40 @@ void plot_monitors(const std::string& dir) {
 
 /// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
 /// at rest under a load) the largest K + W + |Pi| so far.
+/// --restart: the state from the checkpoint, the monitors of the output directory up to its
+/// step (returned: the initial row); the preconditioner starts fresh, as after a checkpoint.
+output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::string& file,
+                           const std::string& dir, Writers& w) {
+  load_checkpoint(sim, dofs, file);
+  sim.solver->invalidate();
+  std::vector<output::MonitorRow> rows;
+  std::string error;
+  const auto& comm = *sim.disc->comm();
+  if (comm.getRank() == 0) {
+    try {
+      for (const auto& r : output::read_monitors(dir + "/monitors.csv"))
+        if (r.step <= sim.state.step) rows.push_back(r);
+      if (rows.empty() || rows.back().step != sim.state.step)
+        throw Error(dir + "/monitors.csv: no row for the checkpoint's step " +
+                    std::to_string(sim.state.step));
+    } catch (const std::exception& e) {
+      error = std::string("--restart ") + file + ": " + e.what();
+    }
+  }
+  long long failed = error.empty() ? 0 : 1;
+  Teuchos::broadcast(comm, 0, 1, &failed);
+  if (failed) throw InputError(comm.getRank() == 0 ? error : "restart failed");
+  output::MonitorRow row0;
+  if (comm.getRank() == 0) {
+    for (const auto& r : rows) w.monitors->append(r);
+    row0 = rows.front();
+  }
+  double e0 = row0.total;  // every rank needs E0 for the energy error
+  Teuchos::broadcast(comm, 0, 1, &e0);
+  row0.total = e0;
+  return row0;
+}
+
 double energy_scale(const output::MonitorRow& r0, const output::MonitorRow& r, double scale) {
   if (r0.total != 0) return std::fabs(r0.total);
   return std::max({scale, r.kinetic + r.elastic + std::fabs(r.potential), 1e-300});
@@ -228,10 +242,12 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   sum.nodes = model.num_nodes();
   comm->barrier();
   sum.setup_seconds = clock.totalElapsedTime(true);
-  const auto row0 = monitor_row(disc, state, time::StepReport{});
+  auto row0 = monitor_row(disc, state, time::StepReport{});
+  if (!opt.restart.empty()) row0 = restart(*sim, *w.dofs, opt.restart, sum.output_dir, w);
+  else if (root) w.monitors->append(row0);
   double escale = energy_scale(row0, row0, 0.0);
-  if (root) w.monitors->append(row0);
-  w.fields_frame(disc, state);
+  if (opt.restart.empty()) w.fields_frame(disc, state);
+  const int checkpoint_every = out.get<int>("checkpoint every");
   try {
     while (!stepper.finished()) {
       const time::StepReport rep = stepper.advance();
@@ -246,6 +262,12 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         w.monitors->flush(false, 1.0);
       }
       w.fields_frame(disc, state);
+      if (checkpoint_every > 0 && state.step % checkpoint_every == 0) {
+        Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: output"));
+        save_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5");
+        if (root) w.monitors->flush(true);
+        sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
+      }
       progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);
     }
   } catch (const Error&) {

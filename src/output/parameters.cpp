@@ -13,6 +13,11 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
   pl->set("every", 10, "Field output (HDF5/XDMF) every N steps; 0 = no field output.",
           int_at_least(0));
   pl->set("progress", true, "Print a progress line per step on the terminal.");
+  pl->set("checkpoint every", 0,
+          "Write DIR/checkpoint.h5 (the complete state: displacements, velocities, the active "
+          "contact set, step size and counters) every N steps, atomically; 0 = never. "
+          "`emcontact input.xml --restart DIR/checkpoint.h5` continues from it.",
+          int_at_least(0));
   pl->set("plot", false,
           "At the end of the run, write DIR/energies.png (kinetic, elastic, potential and total "
           "energy, L and J against time) with tools/plot_monitors.py (Debian's /usr/bin/python3 "

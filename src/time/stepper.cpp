@@ -55,9 +55,9 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
     // iteration in smooth motion; while the last step needed more than 2 iterations (a body
     // ringing after an impact) it costs one, so u_n is used then, as with active contact.
     u1.assign(u0);
-    if (last_increment_ && last_h_ > 0 && last_iterations_ <= 2 &&
+    if (s_.last_increment && s_.last_h > 0 && s_.last_iterations <= 2 &&
         (!contact_ || contact_->global_count(static_cast<int>(trial.size())) == 0))
-      u1.update(h / last_h_, *last_increment_, 1.0);
+      u1.update(h / s_.last_h, *s_.last_increment, 1.0);
     const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1);
     rep.newton_iterations += nr.iterations;
     rep.linear_iterations += nr.linear_iterations;
@@ -125,10 +125,10 @@ StepReport Stepper::advance() {
     if (solve_step(h, u1, rep)) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n
       s_.V->update(2.0 / h, u1, -2.0 / h, u0, -1.0);
-      if (!last_increment_) last_increment_ = Teuchos::rcp(new Vector(u0.getMap()));
-      last_increment_->update(1.0, u1, -1.0, u0, 0.0);
-      last_h_ = h;
-      last_iterations_ = newton_.last().iterations;
+      if (!s_.last_increment) s_.last_increment = Teuchos::rcp(new Vector(u0.getMap()));
+      s_.last_increment->update(1.0, u1, -1.0, u0, 0.0);
+      s_.last_h = h;
+      s_.last_iterations = newton_.last().iterations;
       s_.u->assign(u1);
       s_.t += h;
       ++s_.step;

@@ -12,6 +12,7 @@ struct Options {
   std::string input;                   ///< the XML file
   std::vector<std::string> overrides;  ///< --set Section/Sub/name=value
   std::string output_dir;              ///< --output DIR (overrides Output/directory)
+  std::string restart;                 ///< --restart FILE: continue from a checkpoint
   bool help = false;
 };
 

@@ -25,6 +25,9 @@ struct State {
   int good_steps = 0;  ///< accepted steps since the last change of dt
   std::vector<contact::Active> active;  ///< my active slave nodes at t_n (§6.1)
   std::vector<double> normal_force;     ///< their f_N at the accepted step (§4)
+  Teuchos::RCP<Vector> last_increment;  ///< u_n - u_{n-1}, for the predictor (null at start)
+  double last_h = 0;                    ///< the step size of that increment
+  int last_iterations = 0;              ///< Newton iterations of the last accepted solve
 };
 
 struct StepReport {
@@ -57,9 +60,6 @@ class Stepper {
   State& s_;
   double dt_, end_;
   int max_cuts_, grow_after_;
-  Teuchos::RCP<Vector> last_increment_;  ///< u_n - u_{n-1}, for the predictor
-  double last_h_ = 0;
-  int last_iterations_ = 0;   ///< Newton iterations of the last accepted solve
   std::unique_ptr<contact::ActiveConstraints> constraints_;
 
   void apply(std::vector<contact::Active>& active);

@@ -1,0 +1,25 @@
+#pragma once
+// Checkpoint files: the complete state of a run at the end of a step (displacements,
+// velocities, the predictor's last increment, the active contact set with its projection data
+// and normal forces, step size and counters) in HDF5, written atomically by rank 0.
+#include <string>
+#include <vector>
+
+namespace emc::output {
+
+struct Checkpoint {
+  long step = 0;
+  double t = 0, dt = 0, last_h = 0;
+  int good_steps = 0, last_iterations = 0;
+  std::vector<double> u, V;            ///< 3 per node, global order
+  std::vector<double> last_increment;  ///< 3 per node, or empty (no step taken yet)
+  std::vector<double> active;          ///< 5 per active slave: slave, pair, facet, xi, eta
+  std::vector<double> normal_force;    ///< f_N per active slave
+};
+
+/// Writes `path` atomically (temporary name, then rename); throws emc::Error naming it.
+void write_checkpoint(const std::string& path, const Checkpoint& c);
+/// Reads a checkpoint; throws emc::Error naming the file and what is wrong.
+Checkpoint read_checkpoint(const std::string& path);
+
+}  // namespace emc::output

@@ -1,0 +1,117 @@
+#include "emcontact/app/restart.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
+
+#include "emcontact/error.hpp"
+#include "emcontact/output/checkpoint.hpp"
+
+namespace emc::app {
+
+namespace {
+
+/// Every rank's doubles, concatenated in rank order, on every rank.
+std::vector<double> allgather(const Comm& comm, const std::vector<double>& mine) {
+  const auto& mpi = dynamic_cast<const Teuchos::MpiComm<int>&>(comm);
+  const int np = comm.getSize();
+  int n = static_cast<int>(mine.size());
+  std::vector<int> counts(np), displs(np, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, *mpi.getRawMpiComm());
+  for (int p = 1; p < np; ++p) displs[p] = displs[p - 1] + counts[p - 1];
+  std::vector<double> all(displs[np - 1] + counts[np - 1]);
+  MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, *mpi.getRawMpiComm());
+  return all;
+}
+
+template <class T>
+void bcast(const Comm& comm, std::vector<T>& v) {
+  long long n = static_cast<long long>(v.size());
+  Teuchos::broadcast(comm, 0, 1, &n);
+  v.resize(n);
+  if (n) Teuchos::broadcast(comm, 0, static_cast<int>(n), v.data());
+}
+
+}  // namespace
+
+void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path) {
+  const auto& s = sim.state;
+  output::Checkpoint c;
+  c.step = s.step;
+  c.t = s.t;
+  c.dt = s.dt;
+  c.good_steps = s.good_steps;
+  c.last_h = s.last_h;
+  c.last_iterations = s.last_iterations;
+  c.u = dofs(*s.u);
+  c.V = dofs(*s.V);
+  int has = s.last_increment.is_null() ? 0 : 1;
+  if (has) c.last_increment = dofs(*s.last_increment);
+  std::vector<double> mine;
+  for (std::size_t k = 0; k < s.active.size(); ++k) {
+    const auto& a = s.active[k];
+    mine.insert(mine.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1],
+                             k < s.normal_force.size() ? s.normal_force[k] : 0.0});
+  }
+  const auto all = allgather(*sim.disc->comm(), mine);
+  for (std::size_t k = 0; k + 5 < all.size(); k += 6) {
+    c.active.insert(c.active.end(), all.begin() + k, all.begin() + k + 5);
+    c.normal_force.push_back(all[k + 5]);
+  }
+  if (sim.disc->comm()->getRank() == 0) output::write_checkpoint(path, c);
+  sim.disc->comm()->barrier();
+}
+
+void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string& path) {
+  const auto& comm = *sim.disc->comm();
+  output::Checkpoint c;
+  std::string error;
+  if (comm.getRank() == 0) {
+    try {
+      c = output::read_checkpoint(path);
+      if (c.u.size() != sim.model.X.size() || c.V.size() != c.u.size())
+        throw Error(path + ": the checkpoint has " + std::to_string(c.u.size() / 3) +
+                    " nodes, the input's mesh " + std::to_string(sim.model.num_nodes()));
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  std::vector<char> msg(error.begin(), error.end());
+  bcast(comm, msg);
+  if (!msg.empty()) throw InputError(std::string(msg.begin(), msg.end()));
+  std::vector<double> scalars = {double(c.step), c.t, c.dt, c.last_h, double(c.good_steps),
+                                 double(c.last_iterations), double(c.last_increment.size())};
+  bcast(comm, scalars);
+  bcast(comm, c.active);
+  bcast(comm, c.normal_force);
+  auto& s = sim.state;
+  s.step = static_cast<long>(scalars[0]);
+  s.t = scalars[1];
+  s.dt = scalars[2];
+  s.last_h = scalars[3];
+  s.good_steps = static_cast<int>(scalars[4]);
+  s.last_iterations = static_cast<int>(scalars[5]);
+  dofs.scatter(c.u, *s.u);
+  dofs.scatter(c.V, *s.V);
+  s.last_increment = Teuchos::null;
+  if (scalars[6] > 0) {
+    s.last_increment = Teuchos::rcp(new Vector(s.u->getMap()));
+    dofs.scatter(c.last_increment, *s.last_increment);
+  }
+  s.active.clear();
+  s.normal_force.clear();
+  const int rank = comm.getRank();
+  for (std::size_t k = 0; k + 4 < c.active.size(); k += 5) {
+    contact::Active a;
+    a.slave = static_cast<int>(c.active[k]);
+    if (sim.disc->part().node_owner.at(a.slave) != rank) continue;
+    a.pair = static_cast<int>(c.active[k + 1]);
+    a.facet = static_cast<int>(c.active[k + 2]);
+    a.xi[0] = c.active[k + 3];
+    a.xi[1] = c.active[k + 4];
+    s.active.push_back(a);
+    s.normal_force.push_back(c.normal_force.at(k / 5));
+  }
+}
+
+}  // namespace emc::app

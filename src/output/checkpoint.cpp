@@ -1,0 +1,94 @@
+#include "emcontact/output/checkpoint.hpp"
+
+#include <hdf5.h>
+#include <unistd.h>
+
+#include "emcontact/error.hpp"
+#include "emcontact/output/atomic_file.hpp"
+
+namespace emc::output {
+
+namespace {
+
+void write_vector(hid_t file, const char* name, const std::vector<double>& v,
+                  const std::string& path) {
+  const hsize_t n = v.size();
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t set = H5Dcreate2(file, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
+                               H5P_DEFAULT);
+  const herr_t st = set < 0 ? -1
+                            : H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                       v.empty() ? nullptr : v.data());
+  if (set >= 0) H5Dclose(set);
+  H5Sclose(space);
+  if (st < 0) throw Error(path + ": cannot write the checkpoint dataset " + name);
+}
+
+std::vector<double> read_vector(hid_t file, const char* name, const std::string& path) {
+  const hid_t set = H5Dopen2(file, name, H5P_DEFAULT);
+  if (set < 0) throw Error(path + ": not an emcontact checkpoint (no dataset " + name + ")");
+  const hid_t space = H5Dget_space(set);
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space, &n, nullptr);
+  std::vector<double> v(n);
+  const herr_t st =
+      n ? H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) : 0;
+  H5Sclose(space);
+  H5Dclose(set);
+  if (st < 0) throw Error(path + ": cannot read the checkpoint dataset " + name);
+  return v;
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  const std::string tmp = path + ".tmp." + std::to_string(getpid());
+  const hid_t file = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file < 0) throw Error(path + ": cannot create the checkpoint file");
+  try {
+    write_vector(file, "scalars",
+                 {double(c.step), c.t, c.dt, c.last_h, double(c.good_steps),
+                  double(c.last_iterations)},
+                 path);
+    write_vector(file, "u", c.u, path);
+    write_vector(file, "V", c.V, path);
+    write_vector(file, "last_increment", c.last_increment, path);
+    write_vector(file, "active", c.active, path);
+    write_vector(file, "normal_force", c.normal_force, path);
+  } catch (...) {
+    H5Fclose(file);
+    unlink(tmp.c_str());
+    throw;
+  }
+  H5Fclose(file);
+  atomic_commit(tmp, path);
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  if (access(path.c_str(), R_OK) != 0) throw Error(path + ": cannot read the checkpoint file");
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) throw Error(path + ": not an HDF5 file");
+  Checkpoint c;
+  try {
+    const auto s = read_vector(file, "scalars", path);
+    if (s.size() != 6) throw Error(path + ": bad checkpoint scalars");
+    c.step = static_cast<long>(s[0]);
+    c.t = s[1];
+    c.dt = s[2];
+    c.last_h = s[3];
+    c.good_steps = static_cast<int>(s[4]);
+    c.last_iterations = static_cast<int>(s[5]);
+    c.u = read_vector(file, "u", path);
+    c.V = read_vector(file, "V", path);
+    c.last_increment = read_vector(file, "last_increment", path);
+    c.active = read_vector(file, "active", path);
+    c.normal_force = read_vector(file, "normal_force", path);
+  } catch (...) {
+    H5Fclose(file);
+    throw;
+  }
+  H5Fclose(file);
+  return c;
+}
+
+}  // namespace emc::output

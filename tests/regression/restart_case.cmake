@@ -1,0 +1,28 @@
+# Checkpoint and restart: run A to the end with a checkpoint at step 60 (contact active there),
+# copy its output, restart B from the checkpoint and require B's monitors.csv to be identical to
+# A's, byte for byte (same rank count).
+if(RANKS GREATER 1)
+  set(cmd ${MPIEXEC} --allow-run-as-root --oversubscribe -np ${RANKS} ${EMC})
+else()
+  set(cmd ${EMC})
+endif()
+set(common ${INPUT} --set Time/end=0.5 "--set" "Output/checkpoint every=60" --set Output/progress=false)
+file(REMOVE_RECURSE ${OUT}_A ${OUT}_B)
+execute_process(COMMAND ${cmd} ${common} --output ${OUT}_A RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "run A failed (${rc}):\n${o}\n${e}")
+endif()
+file(COPY ${OUT}_A/ DESTINATION ${OUT}_B)
+execute_process(COMMAND ${cmd} ${common} --output ${OUT}_B --restart ${OUT}_B/checkpoint.h5
+                RESULT_VARIABLE rc OUTPUT_VARIABLE o ERROR_VARIABLE e)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "restarted run B failed (${rc}):\n${o}\n${e}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files ${OUT}_A/monitors.csv ${OUT}_B/monitors.csv
+                RESULT_VARIABLE same)
+if(NOT same EQUAL 0)
+  message(FATAL_ERROR "the restarted run's monitors differ from the uninterrupted run's")
+endif()
+file(STRINGS ${OUT}_A/monitors.csv rows)
+list(GET rows 61 row60)
+message(STATUS "identical monitors; the checkpoint's row: ${row60}")
