@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <csignal>
 #include <cstdlib>
 #include <algorithm>
 #include <memory>
@@ -148,6 +149,10 @@ void plot_monitors(const std::string& dir) {
 
 /// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
 /// at rest under a load) the largest K + W + |Pi| so far.
+/// Set by SIGTERM: the time loop writes a checkpoint after the step and stops.
+volatile std::sig_atomic_t g_terminate = 0;
+extern "C" void on_sigterm(int) { g_terminate = 1; }
+
 /// --restart: the state from the checkpoint, the monitors of the output directory up to its
 /// step (returned: the initial row); the preconditioner starts fresh, as after a checkpoint.
 output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::string& file,
@@ -248,6 +253,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.get<int>("checkpoint every");
+  std::signal(SIGTERM, on_sigterm);
   try {
     while (!stepper.finished()) {
       const time::StepReport rep = stepper.advance();
@@ -269,6 +275,14 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
       }
       progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);
+      int stop = g_terminate, any = 0;  // every rank stops at the same step
+      Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &stop, &any);
+      if (any) {
+        const std::string file = sum.output_dir + "/checkpoint.h5";
+        save_checkpoint(*sim, *w.dofs, file);
+        throw RunError("stopped by SIGTERM after step " + std::to_string(state.step) + " (t = " +
+                       std::to_string(state.t) + "); continue with --restart " + file);
+      }
     }
   } catch (const Error&) {
     progress.finish();
