@@ -284,6 +284,13 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
                        std::to_string(state.t) + "); continue with --restart " + file);
       }
     }
+  } catch (const RunError& e) {  // collective: every rank stops at the same step
+    progress.finish();
+    if (root) w.monitors->flush(true);
+    const std::string file = sum.output_dir + "/checkpoint.h5";
+    if (std::string(e.what()).find("stopped by SIGTERM") != std::string::npos) throw;
+    save_checkpoint(*sim, *w.dofs, file);  // the last accepted step, to look at or restart
+    throw RunError(std::string(e.what()) + "; the last accepted step is in " + file);
   } catch (const Error&) {
     progress.finish();
     if (root) w.monitors->flush(true);

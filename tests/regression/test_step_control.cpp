@@ -47,7 +47,9 @@ TEST(StepControl, RunThatCannotContinueStopsWithMessageAndKeepsMonitors) {
     EXPECT_NE(msg.find("could not be solved"), std::string::npos);
     EXPECT_NE(msg.find("max step cuts"), std::string::npos);
     EXPECT_NE(msg.find("Newton did not converge"), std::string::npos);
+    EXPECT_NE(msg.find("checkpoint.h5"), std::string::npos);  // the last step, to restart from
   }
+  EXPECT_TRUE(std::filesystem::exists("out_step_fail/checkpoint.h5"));
   const auto rows = emc::output::read_monitors("out_step_fail/monitors.csv");
   EXPECT_GE(rows.size(), 1u);  // the initial state (and any accepted step) is on disk
 }
