@@ -3,13 +3,12 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include <algorithm>
-#include <Teuchos_DefaultMpiComm.hpp>
-
 #include <algorithm>
 #include <memory>
 #include <set>
 
 #include "emcontact/contact/search.hpp"
+#include "emcontact/parallel.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/frictionless.hpp"
 
@@ -125,15 +124,7 @@ ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
   std::vector<double> send;
   for (const auto& a : mine)
     send.insert(send.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1]});
-  const auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(disc_.comm());
-  const int np = disc_.comm()->getSize();
-  int n = static_cast<int>(send.size());
-  std::vector<int> counts(np), displs(np, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, *mpi->getRawMpiComm());
-  for (int p = 1; p < np; ++p) displs[p] = displs[p - 1] + counts[p - 1];
-  std::vector<double> all(displs[np - 1] + counts[np - 1]);
-  MPI_Allgatherv(send.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                 *mpi->getRawMpiComm());
+  const auto all = allgather(*disc_.comm(), send);
   ActiveIndex index;
   for (std::size_t k = 0; k + 4 < all.size(); k += 5) {
     Active a;

@@ -26,6 +26,18 @@ std::vector<std::vector<double>> dense_matrix() {
   return A;
 }
 
+/// Row i of a distributed matrix (owned here) as a dense vector.
+std::vector<double> dense_row(const Matrix& A, GO i) {
+  std::vector<double> row(kN, 0.0);
+  const std::size_t n = A.getNumEntriesInGlobalRow(i);
+  Matrix::nonconst_global_inds_host_view_type cols("c", n);
+  Matrix::nonconst_values_host_view_type vals("v", n);
+  std::size_t got = n;
+  A.getGlobalRowCopy(i, cols, vals, got);
+  for (std::size_t k = 0; k < got; ++k) row[cols(k)] += vals(k);
+  return row;
+}
+
 }  // namespace
 
 TEST(Elimination, MatchesDenseReference) {
@@ -98,12 +110,7 @@ TEST(Elimination, MatchesDenseReference) {
   double err = 0, norm = 0;
   for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
     const GO i = map->getGlobalElement(l);
-    std::vector<double> row(kN, 0.0);
-    std::size_t n = Ar->getNumEntriesInGlobalRow(i);
-    Matrix::nonconst_global_inds_host_view_type cols("c", n);
-    Matrix::nonconst_values_host_view_type vals("v", n);
-    Ar->getGlobalRowCopy(i, cols, vals, n);
-    for (std::size_t k = 0; k < n; ++k) row[cols(k)] += vals(k);
+    const auto row = dense_row(*Ar, i);
     for (int j = 0; j < kN; ++j) {
       err = std::max(err, std::fabs(row[j] - R[i][j]));
       norm = std::max(norm, std::fabs(R[i][j]));
@@ -151,12 +158,7 @@ TEST(Elimination, MatchesDenseReference) {
     double e2 = 0;
     for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
       const GO i = map->getGlobalElement(l);
-      std::vector<double> row(kN, 0.0);
-      std::size_t n = Ar2->getNumEntriesInGlobalRow(i);
-      Matrix::nonconst_global_inds_host_view_type cols("c", n);
-      Matrix::nonconst_values_host_view_type vals("v", n);
-      Ar2->getGlobalRowCopy(i, cols, vals, n);
-      for (std::size_t k = 0; k < n; ++k) row[cols(k)] += vals(k);
+      const auto row = dense_row(*Ar2, i);
       for (int j = 0; j < kN; ++j) e2 = std::max(e2, std::fabs(row[j] - R2[i][j]));
     }
     double ge2 = 0;
