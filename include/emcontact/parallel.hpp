@@ -1,5 +1,8 @@
 #pragma once
 // Small collective helpers shared by the modules.
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
 #include <vector>
 
 #include "emcontact/types.hpp"
@@ -8,5 +11,19 @@ namespace emc {
 
 /// Every rank's doubles, concatenated in rank order, on every rank (MPI_Allgatherv).
 std::vector<double> allgather(const Comm& comm, const std::vector<double>& mine);
+
+/// Rank 0's vector (trivially copyable elements) on every rank, in chunks below INT_MAX bytes.
+template <class T>
+void broadcast_vector(const Comm& comm, std::vector<T>& v) {
+  long long n = static_cast<long long>(v.size());
+  Teuchos::broadcast(comm, 0, 1, &n);
+  v.resize(n);
+  const long long bytes = n * static_cast<long long>(sizeof(T));
+  char* p = reinterpret_cast<char*>(v.data());
+  for (long long off = 0; off < bytes; off += (1 << 30)) {
+    const int len = static_cast<int>(std::min<long long>(1 << 30, bytes - off));
+    Teuchos::broadcast(comm, 0, len, p + off);
+  }
+}
 
 }  // namespace emc

@@ -4,33 +4,21 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/mesh/generate.hpp"
+#include "emcontact/parallel.hpp"
 
 namespace emc::app {
 
 namespace {
 
-template <class T>
-void bcast_vector(const Comm& comm, std::vector<T>& v) {
-  long long n = static_cast<long long>(v.size());
-  Teuchos::broadcast(comm, 0, 1, &n);
-  v.resize(n);
-  const long long bytes = n * static_cast<long long>(sizeof(T));
-  char* p = reinterpret_cast<char*>(v.data());
-  for (long long off = 0; off < bytes; off += (1 << 30)) {  // chunks below INT_MAX
-    const int len = static_cast<int>(std::min<long long>(1 << 30, bytes - off));
-    Teuchos::broadcast(comm, 0, len, p + off);
-  }
-}
-
 void bcast_string(const Comm& comm, std::string& s) {
   std::vector<char> v(s.begin(), s.end());
-  bcast_vector(comm, v);
+  broadcast_vector(comm, v);
   s.assign(v.begin(), v.end());
 }
 
 void bcast_mesh(const Comm& comm, mesh::BodyMesh& m) {
-  bcast_vector(comm, m.X);
-  bcast_vector(comm, m.tets);
+  broadcast_vector(comm, m.X);
+  broadcast_vector(comm, m.tets);
   long long ns = static_cast<long long>(m.surfaces.size());
   Teuchos::broadcast(comm, 0, 1, &ns);
   auto it = m.surfaces.begin();
@@ -39,7 +27,7 @@ void bcast_mesh(const Comm& comm, mesh::BodyMesh& m) {
     std::string name = comm.getRank() == 0 ? it->first : std::string();
     std::vector<std::array<int, 3>> tris = comm.getRank() == 0 ? it->second : decltype(tris)();
     bcast_string(comm, name);
-    bcast_vector(comm, tris);
+    broadcast_vector(comm, tris);
     surfaces[name] = std::move(tris);
     if (comm.getRank() == 0) ++it;
   }

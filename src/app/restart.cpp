@@ -8,17 +8,6 @@
 
 namespace emc::app {
 
-namespace {
-
-template <class T>
-void bcast(const Comm& comm, std::vector<T>& v) {
-  long long n = static_cast<long long>(v.size());
-  Teuchos::broadcast(comm, 0, 1, &n);
-  v.resize(n);
-  if (n) Teuchos::broadcast(comm, 0, static_cast<int>(n), v.data());
-}
-
-}  // namespace
 
 void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path) {
   const auto& s = sim.state;
@@ -63,13 +52,13 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
     }
   }
   std::vector<char> msg(error.begin(), error.end());
-  bcast(comm, msg);
+  broadcast_vector(comm, msg);
   if (!msg.empty()) throw InputError(std::string(msg.begin(), msg.end()));
   std::vector<double> scalars = {double(c.step), c.t, c.dt, c.last_h, double(c.good_steps),
                                  double(c.last_iterations), double(c.last_increment.size())};
-  bcast(comm, scalars);
-  bcast(comm, c.active);
-  bcast(comm, c.normal_force);
+  broadcast_vector(comm, scalars);
+  broadcast_vector(comm, c.active);
+  broadcast_vector(comm, c.normal_force);
   auto& s = sim.state;
   s.step = static_cast<long>(scalars[0]);
   s.t = scalars[1];
