@@ -1,6 +1,10 @@
-#include <MueLu_CreateTpetraPreconditioner.hpp>
-
 #include "emcontact/linalg/linear_solver.hpp"
+
+#ifdef EMC_HAVE_MUELU
+#include <MueLu_CreateTpetraPreconditioner.hpp>
+#else
+#include <stdexcept>
+#endif
 
 namespace emc::linalg {
 
@@ -9,6 +13,13 @@ namespace emc::linalg {
 // the user's `MueLu` sublist says otherwise.
 Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A,
                                   const Teuchos::ParameterList& user) {
+#ifndef EMC_HAVE_MUELU
+  (void)A;
+  (void)user;
+  throw std::runtime_error(
+      "Linear solver/preconditioner = \"muelu\": this build of emcontact has no MueLu (the Trilinos "
+      "it was built against lacks it); allowed here: ilu, schwarz, none");
+#else
   Teuchos::ParameterList p;
   p.set("number of equations", 3);
   p.set("verbosity", "none");
@@ -22,6 +33,7 @@ Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A,
   p.setParameters(user);
   Teuchos::RCP<Operator> op = A;
   return MueLu::CreateTpetraPreconditioner(op, p);
+#endif
 }
 
 }  // namespace emc::linalg
