@@ -3,6 +3,7 @@
 //   BM_EmTet4          energy-momentum force + exact 12x12 tangent of one element (kernel only)
 //   BM_Assembly        the whole assembly driver: import, kernels, scatter into the FECrsMatrix
 //   BM_ContactSearch   slave-node queries (grid + CPP) against a surface of about 100k facets
+//   BM_Elimination     one Newton iteration's elimination: P^T A P + D, P^T g and P dq
 #include <benchmark/benchmark.h>
 
 #include <Tpetra_Core.hpp>
@@ -13,6 +14,7 @@
 
 #include "emcontact/contact/search.hpp"
 #include "emcontact/fem/discretization.hpp"
+#include "emcontact/linalg/elimination.hpp"
 #include "kernels/newton_tet4.hpp"
 
 namespace k = emc::kernels;
@@ -178,6 +180,50 @@ static void BM_ContactQueriesOrdered(benchmark::State& state) {
       benchmark::Counter(double(state.iterations()) * sorted.size() / 3, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_ContactQueriesOrdered)->Arg(224)->Unit(benchmark::kMillisecond);
+
+/// The elimination of one Newton iteration (ALGORITHM.md §3) on the box of BM_Assembly: the
+/// bottom face fixed (Dirichlet) and every top-face node tied, like a stick slave, to the three
+/// nodes of a facet one layer below (weights 0.5, 0.3, 0.2) with a dummy beta on its own dofs.
+static void BM_Elimination(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const emc::fem::Model m = box_model(n);
+  emc::fem::Discretization disc(m, Tpetra::getDefaultComm());
+  const auto map = disc.owned_map();
+  auto id = [n](int i, int j, int l) { return (l * (n + 1) + j) * (n + 1) + i; };
+  std::vector<emc::GO> fixed;
+  std::vector<emc::linalg::PRow> rows;
+  std::vector<std::pair<emc::GO, double>> dummy;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const emc::GO bottom = emc::fem::dof_gid(id(i, j, 0), c);
+        if (map->isNodeGlobalElement(bottom)) fixed.push_back(bottom);
+        const emc::GO slave = emc::fem::dof_gid(id(i, j, n), c);
+        if (!map->isNodeGlobalElement(slave)) continue;
+        const int i1 = i < n ? i + 1 : i - 1, j1 = j < n ? j + 1 : j - 1;
+        rows.push_back({slave,
+                        {emc::fem::dof_gid(id(i, j, n - 1), c), emc::fem::dof_gid(id(i1, j, n - 1), c),
+                         emc::fem::dof_gid(id(i, j1, n - 1), c)},
+                        {0.5, 0.3, 0.2}});
+        dummy.emplace_back(slave, 1e3);
+      }
+  emc::linalg::Elimination elim(map);
+  elim.set_constraints(fixed, rows, dummy);
+  emc::Vector u0(map), V0(map), u1(map), g(map), sc(map), R(map), du(map);
+  u1.randomize();
+  u1.scale(1e-3);
+  auto A = Teuchos::rcp(new emc::FEMatrix(disc.graph()));
+  disc.assemble(u0, V0, u1, 1e-3, A.get(), g, &sc);
+  for (auto _ : state) {
+    auto Ar = elim.reduce_matrix(A);
+    elim.reduce_residual(g, R);
+    elim.expand(R, du);
+    benchmark::DoNotOptimize(Ar.get());
+  }
+  state.counters["dofs"] = static_cast<double>(map->getGlobalNumElements());
+  state.counters["slave_dofs"] = static_cast<double>(rows.size());
+}
+BENCHMARK(BM_Elimination)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);

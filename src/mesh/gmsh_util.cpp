@@ -1,4 +1,5 @@
-// The Gmsh session guard and the conversion of a Gmsh tet mesh into a BodyMesh.
+// The Gmsh session guard and the conversion of tets (from Gmsh, or with a node table) into a
+// BodyMesh.
 #include <gmsh.h>
 
 #include <algorithm>
@@ -115,16 +116,15 @@ int local_node(const std::vector<std::size_t>& used_tags, std::size_t tag) {
   return it != used_tags.end() && *it == tag ? static_cast<int>(it - used_tags.begin()) : -1;
 }
 
-std::vector<double> gmsh_node_coordinates(const std::vector<std::size_t>& element_nodes,
-                                          std::vector<std::size_t>& used_tags) {
+std::vector<double> node_coordinates(const std::vector<std::size_t>& element_nodes,
+                                     const std::vector<std::size_t>& node_tags,
+                                     const std::vector<double>& coords,
+                                     std::vector<std::size_t>& used_tags) {
   used_tags = element_nodes;
   std::sort(used_tags.begin(), used_tags.end());
   used_tags.erase(std::unique(used_tags.begin(), used_tags.end()), used_tags.end());
 
   std::vector<double> X(3 * used_tags.size(), 0.0);
-  std::vector<std::size_t> node_tags;
-  std::vector<double> coords, params;
-  gmsh::model::mesh::getNodes(node_tags, coords, params, -1, -1, false, false);
   for (std::size_t i = 0; i < node_tags.size(); ++i) {
     const int k = local_node(used_tags, node_tags[i]);
     if (k >= 0) std::copy_n(&coords[3 * i], 3, &X[3 * static_cast<std::size_t>(k)]);
@@ -132,14 +132,22 @@ std::vector<double> gmsh_node_coordinates(const std::vector<std::size_t>& elemen
   return X;
 }
 
-BodyMesh body_from_gmsh(const GmshTets& t, std::vector<std::size_t>& used_tags) {
+BodyMesh body_from_tags(const GmshTets& t, const std::vector<std::size_t>& node_tags,
+                        const std::vector<double>& coords, std::vector<std::size_t>& used_tags) {
   BodyMesh m;
-  m.X = gmsh_node_coordinates(t.node_tags, used_tags);
+  m.X = node_coordinates(t.node_tags, node_tags, coords, used_tags);
   m.tets.resize(t.node_tags.size());
   for (std::size_t i = 0; i < t.node_tags.size(); ++i) {
     m.tets[i] = local_node(used_tags, t.node_tags[i]);
   }
   return m;
+}
+
+BodyMesh body_from_gmsh(const GmshTets& t, std::vector<std::size_t>& used_tags) {
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, params;
+  gmsh::model::mesh::getNodes(node_tags, coords, params, -1, -1, false, false);
+  return body_from_tags(t, node_tags, coords, used_tags);
 }
 
 }  // namespace emc::mesh::detail

@@ -57,10 +57,18 @@ GmshTets gmsh_tets(const std::vector<int>& entities, const std::string& where);
 /// kept nodes (local index i <-> used_tags[i]).
 BodyMesh body_from_gmsh(const GmshTets& t, std::vector<std::size_t>& used_tags);
 
-/// The coordinates (3 per node) of the nodes used by the Gmsh node tags `element_nodes`,
-/// numbered 0..n-1 by increasing Gmsh tag; `used_tags` receives those sorted, unique tags.
-std::vector<double> gmsh_node_coordinates(const std::vector<std::size_t>& element_nodes,
-                                          std::vector<std::size_t>& used_tags);
+/// As body_from_gmsh, without Gmsh: the coordinates come from the node table `node_tags`
+/// (any order) and `coords` (3 per node), which must hold every node of `t`.
+BodyMesh body_from_tags(const GmshTets& t, const std::vector<std::size_t>& node_tags,
+                        const std::vector<double>& coords, std::vector<std::size_t>& used_tags);
+
+/// The coordinates (3 per node) of the nodes used by the node tags `element_nodes`, numbered
+/// 0..n-1 by increasing tag, taken from the node table `node_tags` / `coords` (3 per node);
+/// `used_tags` receives those sorted, unique tags.
+std::vector<double> node_coordinates(const std::vector<std::size_t>& element_nodes,
+                                     const std::vector<std::size_t>& node_tags,
+                                     const std::vector<double>& coords,
+                                     std::vector<std::size_t>& used_tags);
 
 /// Local index of Gmsh node `tag` in the sorted `used_tags`, or -1 if it is not used.
 int local_node(const std::vector<std::size_t>& used_tags, std::size_t tag);

@@ -1,60 +1,80 @@
-// Reading a Gmsh .msh file (format 4.1) through Gmsh's API: the tets of one physical volume
+// Reading a Gmsh .msh file (format 4.1, ASCII or binary) with our own validating parser
+// (msh_parser.hpp; Gmsh's reader crashes on malformed files): the tets of one physical volume
 // (or all of them) and every physical surface, as named outward-oriented triangles; or, for a
 // file with triangles and no tets, a rigid surface (triangles oriented as in the file).
-#include <gmsh.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "emcontact/error.hpp"
 #include "emcontact/mesh/generate.hpp"
 #include "src/mesh/internal.hpp"
+#include "src/mesh/msh_parser.hpp"
 
 namespace emc::mesh {
 namespace {
 
 using Tri = std::array<int, 3>;
+using msh::MshData;
 
-/// Refuses a missing file or one that is not a .msh file (Gmsh would also open CAD files and
-/// .geo scripts, or silently ignore a missing file).
-void check_msh_file(const std::string& file, const std::string& where) {
+constexpr int kTriangle = 2;     ///< Gmsh's 3-node triangle
+constexpr int kTetrahedron = 4;  ///< Gmsh's 4-node tetrahedron
+
+/// The content of `file`; refuses a missing file or one that is not a regular file.
+std::string read_file(const std::string& file, const std::string& where) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) {
     throw InputError(where + ": mesh file '" + file + "' does not exist or is not a regular file");
   }
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line) && line.find_first_not_of(" \t\r") == std::string::npos) {
-  }
-  if (line.rfind("$MeshFormat", 0) != 0) {
-    throw InputError(where + ": '" + file +
-                     "' is not a Gmsh .msh file (it must start with $MeshFormat; write format "
-                     "4.1, e.g. gmsh -3 -format msh41 body.geo)");
-  }
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw InputError(where + ": cannot read the mesh file '" + file + "'");
+  return text.str();
 }
 
 /// Name of a physical group; unnamed groups are called by their tag.
-std::string physical_name(int dim, int tag) {
-  std::string name;
-  gmsh::model::getPhysicalName(dim, tag, name);
-  return name.empty() ? std::to_string(tag) : name;
+std::string physical_name(const MshData& d, int dim, int tag) {
+  const auto it = d.physical_names.find({dim, tag});
+  return it == d.physical_names.end() || it->second.empty() ? std::to_string(tag) : it->second;
+}
+
+/// The physical groups of dimension `dim` that hold an entity, sorted by tag.
+std::vector<int> physical_groups(const MshData& d, int dim) {
+  std::set<int> groups;
+  for (const auto& e : d.entity_physicals) {
+    if (e.first.first == dim) groups.insert(e.second.begin(), e.second.end());
+  }
+  return std::vector<int>(groups.begin(), groups.end());
+}
+
+/// The sorted entities of dimension `dim` in physical group `group`, or all of them if
+/// `group` is 0.
+std::vector<int> group_entities(const MshData& d, int dim, int group) {
+  std::vector<int> entities;
+  for (const auto& e : d.entity_physicals) {
+    const std::vector<int>& p = e.second;
+    if (e.first.first != dim) continue;
+    if (group == 0 || std::find(p.begin(), p.end(), group) != p.end()) {
+      entities.push_back(e.first.second);
+    }
+  }
+  return entities;  // sorted: the map is
 }
 
 /// The sorted entities of the physical volume `volume`; throws listing the available names.
-std::vector<int> volume_entities(const std::string& volume, const std::string& where) {
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, 3);
+std::vector<int> volume_entities(const MshData& d, const std::string& volume,
+                                 const std::string& where) {
   std::vector<int> entities;
   std::string names;
-  for (const auto& g : groups) {
-    const std::string name = physical_name(3, g.second);
+  for (int group : physical_groups(d, 3)) {
+    const std::string name = physical_name(d, 3, group);
     names += (names.empty() ? "'" : ", '") + name + "'";
     if (name != volume) continue;
-    std::vector<int> tags;
-    gmsh::model::getEntitiesForPhysicalGroup(3, g.second, tags);
+    const std::vector<int> tags = group_entities(d, 3, group);
     entities.insert(entities.end(), tags.begin(), tags.end());
   }
   if (entities.empty()) {
@@ -68,57 +88,89 @@ std::vector<int> volume_entities(const std::string& volume, const std::string& w
   return entities;
 }
 
-/// The 3-node triangles of physical surface `tag` whose nodes all belong to the body.
-std::vector<Tri> physical_triangles(int tag, const std::vector<std::size_t>& used_tags) {
-  std::vector<int> entities;
-  gmsh::model::getEntitiesForPhysicalGroup(2, tag, entities);
-  std::vector<Tri> tris;
+/// The element tags and node tags of the elements of `type` in the entities of dimension `dim`
+/// given, entity by entity, in file order within an entity.
+detail::GmshTets elements_of(const MshData& d, int dim, int type, const std::vector<int>& entities) {
+  detail::GmshTets out;
   for (int entity : entities) {
-    std::vector<std::size_t> element_tags, node_tags;
-    gmsh::model::mesh::getElementsByType(2, element_tags, node_tags, entity);
-    for (std::size_t i = 0; i + 2 < node_tags.size(); i += 3) {
-      Tri t{};
-      for (int k = 0; k < 3; ++k) t[k] = detail::local_node(used_tags, node_tags[i + k]);
-      if (t[0] >= 0 && t[1] >= 0 && t[2] >= 0) tris.push_back(t);
+    for (const msh::ElementBlock& b : d.blocks) {
+      if (b.dim != dim || b.entity != entity || b.type != type) continue;
+      out.element_tags.insert(out.element_tags.end(), b.element_tags.begin(), b.element_tags.end());
+      out.node_tags.insert(out.node_tags.end(), b.node_tags.begin(), b.node_tags.end());
     }
+  }
+  return out;
+}
+
+/// The first non-empty block of dimension `dim` in one of `entities` whose type is not `type`
+/// (smallest entity first), or nullptr.
+const msh::ElementBlock* other_type(const MshData& d, int dim, int type,
+                                    const std::vector<int>& entities) {
+  for (int entity : entities) {
+    for (const msh::ElementBlock& b : d.blocks) {
+      if (b.dim == dim && b.entity == entity && b.type != type && b.count > 0) return &b;
+    }
+  }
+  return nullptr;
+}
+
+/// The 4-node tets of the given volume entities (all if `entities` is empty), entity by
+/// entity. Refuses any other 3D element type in those entities.
+detail::GmshTets volume_tets(const MshData& d, std::vector<int> entities,
+                             const std::string& where) {
+  if (entities.empty()) entities = group_entities(d, 3, 0);
+  if (const msh::ElementBlock* b = other_type(d, 3, kTetrahedron, entities)) {
+    throw InputError(where + ": volume " + std::to_string(b->entity) + " contains '" +
+                     msh::element_type(b->type)->name +
+                     "' elements; only 4-node tetrahedra (Gmsh element type 4) are supported");
+  }
+  return elements_of(d, 3, kTetrahedron, entities);
+}
+
+/// The 3-node triangles of physical surface `group` whose nodes all belong to the body.
+std::vector<Tri> physical_triangles(const MshData& d, int group,
+                                    const std::vector<std::size_t>& used_tags) {
+  const detail::GmshTets t = elements_of(d, 2, kTriangle, group_entities(d, 2, group));
+  std::vector<Tri> tris;
+  for (std::size_t i = 0; i + 2 < t.node_tags.size(); i += 3) {
+    Tri tri{};
+    for (int k = 0; k < 3; ++k) tri[k] = detail::local_node(used_tags, t.node_tags[i + k]);
+    if (tri[0] >= 0 && tri[1] >= 0 && tri[2] >= 0) tris.push_back(tri);
   }
   return tris;
 }
 
-/// Every physical surface with triangles on the body, oriented outward, by name. Surfaces of
-/// other volumes of the same file (no triangle on this body) are skipped.
-void read_surfaces(BodyMesh& m, const std::vector<std::size_t>& used_tags) {
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, 2);
-  for (const auto& g : groups) {
-    const std::vector<Tri> tris =
-        detail::orient_on_body(m, physical_triangles(g.second, used_tags));
+/// Every physical surface's triangles on the body (re-oriented outward if `orient`), by
+/// name; a surface with no triangle on the body is skipped. Sorted (deterministic).
+void read_surfaces(const MshData& d, BodyMesh& m, const std::vector<std::size_t>& used_tags,
+                   bool orient) {
+  for (int group : physical_groups(d, 2)) {
+    std::vector<Tri> tris = physical_triangles(d, group, used_tags);
+    if (orient) tris = detail::orient_on_body(m, tris);
     if (tris.empty()) continue;
-    std::vector<Tri>& named = m.surfaces[physical_name(2, g.second)];
+    std::vector<Tri>& named = m.surfaces[physical_name(d, 2, group)];
     named.insert(named.end(), tris.begin(), tris.end());
   }
   for (auto& s : m.surfaces) detail::sort_triangles(s.second);
 }
 
-/// Gmsh element tags and node tags (3 per triangle) of every 3-node triangle of the model;
-/// refuses other 2D element types (quadrangles, curved triangles).
-detail::GmshTets all_triangles(const std::string& where) {
-  std::vector<int> types;
-  gmsh::model::mesh::getElementTypes(types, 2, -1);
-  for (int type : types) {
-    if (type == 2) continue;
-    std::string name;
-    int dim, order, num_nodes, num_primary;
-    std::vector<double> local_coords;
-    gmsh::model::mesh::getElementProperties(type, name, dim, order, num_nodes, local_coords,
-                                            num_primary);
-    throw InputError(where + ": the surface mesh contains '" + name +
+/// Element tags and node tags (3 per triangle) of every 3-node triangle of the file; refuses
+/// other 2D element types (quadrangles, curved triangles).
+detail::GmshTets all_triangles(const MshData& d, const std::string& where) {
+  const std::vector<int> surfaces = group_entities(d, 2, 0);
+  const msh::ElementBlock* other = nullptr;
+  for (const msh::ElementBlock& b : d.blocks) {
+    if (b.dim == 2 && b.type != kTriangle && b.count > 0 && (!other || b.type < other->type)) {
+      other = &b;
+    }
+  }
+  if (other) {
+    throw InputError(where + ": the surface mesh contains '" +
+                     msh::element_type(other->type)->name +
                      "' elements; a rigid surface supports only 3-node triangles (Gmsh element "
                      "type 2)");
   }
-  detail::GmshTets t;  // triangles here, not tets
-  gmsh::model::mesh::getElementsByType(2, t.element_tags, t.node_tags, -1);
-  return t;
+  return elements_of(d, 2, kTriangle, surfaces);
 }
 
 /// Refuses a triangle of zero (or below 1e-12 of the mean) area: its normal is undefined.
@@ -150,60 +202,53 @@ void check_triangles(const BodyMesh& m, const std::vector<Tri>& tris,
 /// The rigid surface of a file without tets: the nodes of its triangles, every physical
 /// surface by name and `surface` (all triangles), all as oriented in the file. Empty (no
 /// nodes) if the file has no triangles.
-BodyMesh rigid_surface(const std::string& where) {
-  const detail::GmshTets t = all_triangles(where);
+BodyMesh rigid_surface(const MshData& d, const std::string& where) {
+  const detail::GmshTets t = all_triangles(d, where);
   BodyMesh m;
   if (t.element_tags.empty()) return m;
   std::vector<std::size_t> used_tags;
-  m.X = detail::gmsh_node_coordinates(t.node_tags, used_tags);
+  m.X = detail::node_coordinates(t.node_tags, d.node_tags, d.coords, used_tags);
   std::vector<Tri> all(t.element_tags.size());
   for (std::size_t e = 0; e < all.size(); ++e) {
     for (int k = 0; k < 3; ++k) all[e][k] = detail::local_node(used_tags, t.node_tags[3 * e + k]);
   }
   check_triangles(m, all, t.element_tags, where);
-  gmsh::vectorpair groups;
-  gmsh::model::getPhysicalGroups(groups, 2);
-  for (const auto& g : groups) {
-    const std::vector<Tri> tris = physical_triangles(g.second, used_tags);
-    if (tris.empty()) continue;
-    std::vector<Tri>& named = m.surfaces[physical_name(2, g.second)];
-    named.insert(named.end(), tris.begin(), tris.end());
-  }
+  read_surfaces(d, m, used_tags, false);
   m.surfaces["surface"] = std::move(all);  // always all triangles (replaces a group "surface")
-  for (auto& s : m.surfaces) detail::sort_triangles(s.second);
+  detail::sort_triangles(m.surfaces["surface"]);
+  return m;
+}
+
+/// The mesh of parsed file `d` (see read_msh).
+BodyMesh mesh_of(const MshData& d, const std::string& volume, const std::string& where) {
+  const std::vector<int> entities =
+      volume.empty() ? std::vector<int>() : volume_entities(d, volume, where);
+  const detail::GmshTets tets = volume_tets(d, entities, where);
+  if (tets.element_tags.empty() && volume.empty()) {
+    BodyMesh m = rigid_surface(d, where);
+    if (m.num_nodes() > 0) return m;
+    throw InputError(where +
+                     ": no 4-node tetrahedra and no triangles; generate a 3D mesh (gmsh -3) "
+                     "for a deformable body, or a surface mesh of triangles (gmsh -2) for a "
+                     "rigid surface");
+  }
+  if (tets.element_tags.empty()) {
+    throw InputError(where + ": no 4-node tetrahedra in physical volume '" + volume +
+                     "'; generate a 3D mesh (gmsh -3)");
+  }
+  std::vector<std::size_t> used_tags;
+  BodyMesh m = detail::body_from_tags(tets, d.node_tags, d.coords, used_tags);
+  check_tets(m, where, tets.element_tags);  // a user mesh is never silently fixed
+  read_surfaces(d, m, used_tags, true);
   return m;
 }
 
 }  // namespace
 
 BodyMesh read_msh(const std::string& file, const std::string& volume, const std::string& where) {
-  check_msh_file(file, where);
+  const std::string text = read_file(file, where);
   const std::string file_where = where + ": '" + file + "'";
-  detail::GmshSession session;
-  BodyMesh m;
-  detail::with_gmsh(file_where, "Gmsh cannot read the file", [&] {
-    gmsh::open(file);
-    const std::vector<int> entities =
-        volume.empty() ? std::vector<int>() : volume_entities(volume, file_where);
-    const detail::GmshTets tets = detail::gmsh_tets(entities, file_where);
-    if (tets.element_tags.empty() && volume.empty()) {
-      m = rigid_surface(file_where);
-      if (m.num_nodes() > 0) return;
-      throw InputError(file_where +
-                       ": no 4-node tetrahedra and no triangles; generate a 3D mesh (gmsh -3) "
-                       "for a deformable body, or a surface mesh of triangles (gmsh -2) for a "
-                       "rigid surface");
-    }
-    if (tets.element_tags.empty()) {
-      throw InputError(file_where + ": no 4-node tetrahedra in physical volume '" + volume +
-                       "'; generate a 3D mesh (gmsh -3)");
-    }
-    std::vector<std::size_t> used_tags;
-    m = detail::body_from_gmsh(tets, used_tags);
-    check_tets(m, file_where, tets.element_tags);  // a user mesh is never silently fixed
-    read_surfaces(m, used_tags);
-  });
-  return m;
+  return mesh_of(msh::parse_msh(text, file_where), volume, file_where);
 }
 
 }  // namespace emc::mesh

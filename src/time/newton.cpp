@@ -1,6 +1,6 @@
 #include "emcontact/time/newton.hpp"
 
-#include <Teuchos_TimeMonitor.hpp>
+#include "emcontact/time/timers.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -40,15 +40,19 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
 }
 
 NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
-  static auto& t_asm = *TimeMonitor::getNewTimer("emcontact: assembly");
-  static auto& t_elim = *TimeMonitor::getNewTimer("emcontact: elimination");
-  static auto& t_solve = *TimeMonitor::getNewTimer("emcontact: linear solve");
+  auto& t_asm = assembly_timer();
+  auto& t_elim = elimination_timer();
+  auto& t_solve = linear_solve_timer();
+  auto& t_contact = contact_timer();
   const auto map = disc_.owned_map();
   Vector& g = *g_;
   Vector scale(map), R(map), dq(map), du(map);
   NewtonResult res;
   double r0 = 0;
-  if (hooks_) hooks_->start(u0, u1);
+  if (hooks_) {
+    TimeMonitor tm(t_contact);
+    hooks_->start(u0, u1);
+  }
   const double eps = std::numeric_limits<double>::epsilon();
   for (int it = 0;; ++it) {
     fem::AssemblyInfo info;
@@ -64,9 +68,12 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       return res;
     }
     RCP<Matrix> Ar;
+    if (hooks_) {
+      TimeMonitor tm(t_contact);
+      hooks_->before_reduce(u0, u1, g, *A_);
+    }
     {
       TimeMonitor tm(t_elim);
-      if (hooks_) hooks_->before_reduce(u0, u1, g, *A_);
       elim_.reduce_residual(g, R);
     }
     const double r = R.norm2();
@@ -106,7 +113,10 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     }
     elim_.expand(dq, du);
     u1.update(1.0, du, 1.0);
-    if (hooks_) hooks_->after_update(u0, u1);
+    if (hooks_) {
+      TimeMonitor tm(t_contact);
+      hooks_->after_update(u0, u1);
+    }
     ++res.iterations;
   }
 }

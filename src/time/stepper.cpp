@@ -9,6 +9,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include "emcontact/error.hpp"
+#include "emcontact/time/timers.hpp"
 
 namespace emc::time {
 
@@ -37,6 +38,7 @@ bool Stepper::finished() const { return s_.t >= end_ - 1e-9 * dt_; }
 // The active set's constraints for the next solve; a new P invalidates the preconditioner.
 void Stepper::apply(std::vector<contact::Active>& active) {
   if (!contact_) return;
+  Teuchos::TimeMonitor tm(contact_timer());  // constraint rows and the new P (§2-§3)
   if (constraints_->use(&active)) newton_.solver().invalidate();
 }
 
@@ -66,6 +68,7 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
       return false;
     }
     if (!contact_) return true;
+    Teuchos::TimeMonitor tm(contact_timer());
     const auto x0 = contact::positions(contact_->disc_model(), contact_->replicate(u0));
     const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
     const auto fresh = contact_->detect(x0, x1, trial);
@@ -97,6 +100,7 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
     fN.clear();
   }
   // §6.5: accept; nodes still in tension (only pinned ones can be) leave for the next step
+  Teuchos::TimeMonitor tm(contact_timer());
   std::vector<contact::Active> keep;
   s_.normal_force.clear();
   for (std::size_t k = 0; k < trial.size(); ++k)

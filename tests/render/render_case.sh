@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# render_ball_impact: runs inputs/ball.xml just past its first impact with field output every
+# 5 steps, renders the frame with the most nodes in contact with tools/render_fields.py (whole
+# ball, and cut at mid y as in the README), checks the PNGs, and checks that a bad field name
+# stops the script with exit code 2 and a message.
+# Usage: render_case.sh EMC PVPYTHON PYTHON SOURCE_DIR OUTDIR
+# Without an X display pvpython runs under xvfb-run; neither there: exit 77 (ctest: skipped).
+set -u
+emc=$1 pvpython=$2 python=$3 src=$4 out=$5
+fail() { echo "FAIL: $*"; exit 1; }
+render=$src/tools/render_fields.py
+check=$src/tests/render/check_png.py
+
+# Debian's ParaView renders through X only (--force-offscreen-rendering still needs a server).
+x=()
+if [ -z "${DISPLAY:-}" ]; then
+  command -v xvfb-run > /dev/null \
+    || { echo "SKIP: no X display and no xvfb-run (Debian package xvfb)"; exit 77; }
+  x=(xvfb-run -a -s "-screen 0 1280x1024x24")
+fi
+# pvr LOG ARGS...: renders; retries twice if the X server was not there (xvfb-run -a can race
+# with an Xvfb that is just exiting and hand out a display nobody serves).
+pvr() {
+  local log=$1 rc; shift
+  for attempt in 1 2 3; do
+    "${x[@]}" "$pvpython" "$render" "$@" > "$log" 2>&1
+    rc=$?
+    grep -q "bad X server connection\|Xvfb failed" "$log" || break
+    echo "X server not available (attempt $attempt), retrying"
+    sleep 2
+  done
+  return $rc
+}
+
+rm -rf "$out"
+mkdir -p "$out"
+start=$(date +%s)
+"$emc" "$src/inputs/ball.xml" --set Time/end=0.39 --set Output/every=5 \
+  --set Output/plot=false --set Output/progress=false --output "$out/run" > "$out/run.log" 2>&1 \
+  || { tail -n 20 "$out/run.log"; fail "emcontact exited with $?"; }
+ran=$(date +%s)
+echo "emcontact, ball to t = 0.39: $((ran - start)) s"
+[ -f "$out/run/fields.xdmf" ] || fail "no fields.xdmf"
+
+for view in whole clip; do
+  extra=()
+  [ $view = clip ] && extra=(--clip)
+  t0=$(date +%s)
+  pvr "$out/$view.log" "$out/run/fields.xdmf" "$out/$view.png" --at-impact --size 1200x900 \
+    --title "inputs/ball.xml" "${extra[@]}"
+  rc=$?
+  cat "$out/$view.log" | tail -n 20
+  [ $rc -eq 0 ] || fail "render_fields.py ($view) exited with $rc"
+  echo "render ($view): $(($(date +%s) - t0)) s"
+  # the frame shown is at the impact: nodes in contact, about the steps 375-385
+  n=$(sed -n 's/.* \([0-9][0-9]*\) nodes in contact.*/\1/p' "$out/$view.log" | tail -n 1)
+  [ -n "$n" ] && [ "$n" -gt 20 ] || fail "$view: the frame rendered is not at the impact (${n:-?} nodes in contact)"
+  "$python" "$check" "$out/$view.png" 1200 900 || fail "$view: the PNG check failed"
+done
+
+# a field that does not exist: exit code 2 and a message naming it (before any rendering)
+"${x[@]}" "$pvpython" "$render" "$out/run/fields.xdmf" "$out/bad.png" --field no_such_field \
+  > "$out/bad.log" 2>&1
+rc=$?
+cat "$out/bad.log"
+[ $rc -eq 2 ] || fail "an unknown field: exit code $rc, expected 2"
+grep -q "no field 'no_such_field'" "$out/bad.log" || fail "an unknown field: no message"
+[ ! -e "$out/bad.png" ] || fail "an unknown field: a PNG was written"
+echo "PASS ($(($(date +%s) - start)) s in all)"
