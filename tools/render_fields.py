@@ -1,21 +1,22 @@
 """Renders one time of an emcontact field output (fields.xdmf) to a PNG with ParaView.
 
-Usage (ParaView's Python, Debian package `paraview`):
+Usage (ParaView's Python: Debian packages python3-paraview and paraview):
 
     pvpython tools/render_fields.py DIR/fields.xdmf OUT.png [--at-impact | --time T]
         [--field von_mises] [--scale 1] [--size 1200x900] [--ground-z 0 | --no-ground]
         [--clip] [--title TEXT]
 
 Without a display (CI, ssh) Debian's ParaView needs an X server: run it under
-`xvfb-run -a pvpython ...` (Debian package `xvfb`).
+`xvfb-run -a -s "-screen 0 1280x1024x24" pvpython ...` (Debian packages xvfb and xauth);
+`--force-offscreen-rendering` does not help there, it still needs an X server.
 
 The time shown is the output time with the most nodes in contact (`contact_status` > 0; ties go
 to the larger total `normal_force`), which is the default (`--at-impact`), or the output time
 nearest to `--time T`. The bodies are warped by `displacement` (times `--scale`, default 1: the
 true deformed shape) and coloured by `--field` (point or cell data, default the von Mises
 stress per tet) with a colour bar. The field output holds only the deformable bodies, so the
-rigid ground is drawn as a grey plane z = `--ground-z` (default 0, the ball's ground) under
-them. The camera looks horizontally along +y (the ball moves to the right); `--clip` cuts the
+rigid ground is drawn as a grey slab whose top is z = `--ground-z` (default 0, the ball's
+ground). The camera looks horizontally along +y (the ball moves to the right); `--clip` cuts the
 bodies at their mid y plane and shows the far half, so the stress inside a shell is seen.
 
 Exit codes: 0 on success, 2 for a bad argument, a missing file, an unknown field or an output
@@ -27,6 +28,10 @@ import sys
 import xml.etree.ElementTree as ET
 
 PROG = "render_fields.py"
+# colour bar titles of the fields emcontact writes (others: the name; vectors: the magnitude)
+LABELS = {"von_mises": "von Mises stress [Pa]", "normal_force": "normal force [N]",
+          "displacement": "|displacement| [m]", "velocity": "|velocity| [m/s]",
+          "contact_status": "contact status"}
 
 
 def fail(message):
@@ -128,9 +133,8 @@ def main(argv):
              f"cell data: {', '.join(cell_arrays)}")
     if "displacement" not in point_arrays:
         fail(f"{args.xdmf}: no point field 'displacement' to warp by")
-    times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
-    if isinstance(times, float):
-        times = [times]
+    times = reader.TimestepValues  # a list, a single float, or empty without time steps
+    times = [float(times)] if isinstance(times, (int, float)) else (list(times) or [0.0])
     merged = MergeBlocks(Input=reader)  # one unstructured grid whatever the XDMF's grid layout
 
     def fetch(t):
@@ -210,15 +214,13 @@ def main(argv):
         body.EdgeOpacity = 0.35
     ColorBy(body, (association, args.field))
     lut = GetColorTransferFunction(args.field)
-    lut.ApplyPreset("Turbo" if hasattr(lut, "ApplyPreset") else "Jet", True)
+    lut.ApplyPreset("Turbo", True)
     lut.RescaleTransferFunction(lo, hi)
     if hasattr(lut, "AutomaticRescaleRangeMode"):
         lut.AutomaticRescaleRangeMode = "Never"
     body.SetScalarBarVisibility(view, True)
     bar = GetScalarBar(lut, view)
-    unit = " [Pa]" if args.field in ("von_mises",) else (" [N]" if args.field == "normal_force"
-                                                          else "")
-    bar.Title = args.field.replace("_", " ") + unit
+    bar.Title = LABELS.get(args.field, args.field.replace("_", " "))
     bar.ComponentTitle = ""
     bar.TitleColor = [0.0, 0.0, 0.0]
     bar.LabelColor = [0.0, 0.0, 0.0]
@@ -227,7 +229,7 @@ def main(argv):
     bar.LabelFontSize = max(8, round(18 * font))
     bar.TitleBold = 1
     bar.ScalarBarLength = 0.55
-    bar.ScalarBarThickness = 20
+    bar.ScalarBarThickness = max(8, round(20 * font))
     bar.WindowLocation = "Any Location"
     bar.Position = [0.86, 0.3]  # above the ground band
     bar.AutomaticLabelFormat = 0
@@ -257,8 +259,8 @@ def main(argv):
     td.Justification = "Center"
 
     # Horizontal view along +y at the deformed bodies: the ground is seen edge-on, so the
-    # flattened contact is a straight line on its top edge.
-    # the scene's centre at 45% of the height: 5% margin below it, 15% above it for the title
+    # flattened contact is a straight line on its top edge. The scene's centre is at 45% of
+    # the height: 5% margin below it, 15% above it for the title.
     focal = [float(center[0]), float(center[1]), 0.5 * (zlo + zhi) + 0.1 * view_half]
     view.CameraFocalPoint = focal
     view.CameraViewUp = [0.0, 0.0, 1.0]

@@ -14,7 +14,9 @@ command -v pvpython > /dev/null || { echo "no pvpython: apt-get install paraview
 x=()
 if [ -z "${DISPLAY:-}" ]; then
   command -v xvfb-run > /dev/null || { echo "no X display and no xvfb-run: apt-get install xvfb"; exit 1; }
-  x=(xvfb-run -a -s "-screen 0 1280x1024x24")
+  # from a random display number on (-n before -a): an Xvfb that an earlier xvfb-run has just
+  # killed may still be exiting, and removing its socket, on the display -a would pick
+  x=(xvfb-run -n $((100 + RANDOM % 800)) -a -s "-screen 0 1280x1024x24")
 fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 tmp=$(mktemp -d)
