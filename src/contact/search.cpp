@@ -7,25 +7,38 @@
 
 namespace emc::contact {
 
+// The record of facet f: grown box, nodes, tangents, normal and metric (ALGORITHM.md §2).
+void FacetGrid::precompute(int f, double margin) {
+  FacetData& d = data_[f];
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < 3; ++i) d.xm[a][i] = x_[3 * facets_[f][a] + i];
+  const kernels::Facet geo = kernels::facet(d.xm);
+  d.g11 = d.g12 = d.g22 = 0;
+  for (int i = 0; i < 3; ++i) {
+    d.box[i] = std::min({d.xm[0][i], d.xm[1][i], d.xm[2][i]}) - margin;
+    d.box[3 + i] = std::max({d.xm[0][i], d.xm[1][i], d.xm[2][i]}) + margin;
+    d.t1[i] = geo.t1[i];
+    d.t2[i] = geo.t2[i];
+    d.n[i] = geo.n[i];
+    d.g11 += geo.t1[i] * geo.t1[i];
+    d.g12 += geo.t1[i] * geo.t2[i];
+    d.g22 += geo.t2[i] * geo.t2[i];
+  }
+  d.det = d.g11 * d.g22 - d.g12 * d.g12;
+}
+
 FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
                      double margin)
     : facets_(facets), x_(x) {
   const int nf = static_cast<int>(facets.size());
-  box_.resize(6 * nf);
+  data_.resize(nf);
   double hi[3] = {-1e300, -1e300, -1e300}, ext_sum = 0;
   for (int i = 0; i < 3; ++i) lo_[i] = 1e300;
   for (int f = 0; f < nf; ++f) {
-    double* b = &box_[6 * f];
+    precompute(f, margin);
+    const double* b = data_[f].box;
     for (int i = 0; i < 3; ++i) {
-      b[i] = 1e300;
-      b[3 + i] = -1e300;
-      for (int a : facets[f]) {
-        b[i] = std::min(b[i], x[3 * a + i]);
-        b[3 + i] = std::max(b[3 + i], x[3 * a + i]);
-      }
-      ext_sum += b[3 + i] - b[i];
-      b[i] -= margin;
-      b[3 + i] += margin;
+      ext_sum += b[3 + i] - b[i] - 2 * margin;
       lo_[i] = std::min(lo_[i], b[i]);
       hi[i] = std::max(hi[i], b[3 + i]);
     }
@@ -39,8 +52,8 @@ FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::v
   // CSR: count, prefix sum, fill in facet order (so every cell's list is sorted by facet id)
   std::vector<int> count(ncell + 1, 0);
   auto range = [&](int f, int i, int& a, int& b) {
-    a = std::clamp(int(std::floor((box_[6 * f + i] - lo_[i]) / h_)), 0, dims_[i] - 1);
-    b = std::clamp(int(std::floor((box_[6 * f + 3 + i] - lo_[i]) / h_)), 0, dims_[i] - 1);
+    a = std::clamp(int(std::floor((data_[f].box[i] - lo_[i]) / h_)), 0, dims_[i] - 1);
+    b = std::clamp(int(std::floor((data_[f].box[3 + i] - lo_[i]) / h_)), 0, dims_[i] - 1);
   };
   auto visit = [&](int f, auto&& fn) {
     int a[3], b[3];
@@ -67,12 +80,25 @@ int FacetGrid::cell_of(const double y[3], int d[3]) const {
   return (d[2] * dims_[1] + d[1]) * dims_[0] + d[0];
 }
 
+// kernels::facet_cpp with the facet's precomputed record: the same operations, the same bits.
 bool FacetGrid::cpp(int f, const double y[3], Hit& h) const {
-  double xm[3][3];
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < 3; ++i) xm[a][i] = x_[3 * facets_[f][a] + i];
+  const FacetData& fd = data_[f];
   h.facet = f;
-  return kernels::facet_cpp(y, xm, h.xi, h.gap);
+  if (!(fd.det > 0)) return false;
+  double b1 = 0, b2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = y[i] - fd.xm[0][i];
+    b1 += fd.t1[i] * d;
+    b2 += fd.t2[i] * d;
+  }
+  h.xi[0] = (fd.g22 * b1 - fd.g12 * b2) / fd.det;
+  h.xi[1] = (fd.g11 * b2 - fd.g12 * b1) / fd.det;
+  double N[3];
+  kernels::facet_shape(h.xi, N);
+  h.gap = 0;
+  for (int i = 0; i < 3; ++i)
+    h.gap += (y[i] - N[0] * fd.xm[0][i] - N[1] * fd.xm[1][i] - N[2] * fd.xm[2][i]) * fd.n[i];
+  return true;
 }
 
 // ALGORITHM.md §2 (choice of facet) and §5 step 2 (keep the current facet up to hyst).
@@ -92,7 +118,7 @@ Hit FacetGrid::locate(const double y[3], int current, double hyst) const {
   if (c >= 0)
     for (int k = cell_start_(c); k < cell_start_(c + 1); ++k) {
       const int f = cell_facets_(k);
-      const double* b = &box_[6 * f];
+      const double* b = data_[f].box;
       if (y[0] < b[0] || y[0] > b[3] || y[1] < b[1] || y[1] > b[4] || y[2] < b[2] || y[2] > b[5])
         continue;
       Hit h;

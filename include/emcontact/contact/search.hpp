@@ -36,7 +36,15 @@ class FacetGrid {
   double lo_[3], h_;
   int dims_[3];
   Kokkos::View<int*, Kokkos::HostSpace> cell_start_, cell_facets_;
-  std::vector<double> box_;  ///< 6 per facet: grown bounding box
+  /// Per facet, in one record (one cache-friendly read per candidate): the grown bounding box
+  /// and what the CPP of §2 needs, computed once per grid: the nodes, tau_xi, tau_eta, n and
+  /// the 2x2 metric (g11, g12, g22, det), so that cpp() gives kernels::facet_cpp's bits.
+  struct FacetData {
+    double box[6];
+    double xm[3][3], t1[3], t2[3], n[3], g11, g12, g22, det;
+  };
+  std::vector<FacetData> data_;
+  void precompute(int f, double margin);
 
   int cell_of(const double y[3], int d[3]) const;
   bool cpp(int f, const double y[3], Hit& h) const;

@@ -1,0 +1,60 @@
+#!/usr/bin/python3
+"""Thread scaling with an OpenMP build of Kokkos (perf/build_trilinos_openmp.sh, then emcontact
+built against it, e.g. in build-omp/): the assembly benchmark (BM_Assembly) and whole runs of
+the ball (flight and impact phases, as perf/scaling_report.py) with OMP_NUM_THREADS = each of
+--threads on one rank. Efficiency = t1 / (N tN). Writes perf/results/threads.json and the table
+in perf/README.md between <!-- threads:begin --> and <!-- threads:end -->.
+
+    /usr/bin/python3 perf/threads_report.py --build build-omp [--threads 1 2] [--sizes 0.026 0.0129]
+"""
+import argparse, datetime, json, os, subprocess, sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_util import ENV, ROOT, replace_section  # noqa: E402
+from scaling_report import TIMERS, run  # noqa: E402
+
+
+def assembly_rate(build, threads):
+    env = dict(ENV, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND='spread', OMP_PLACES='threads')
+    out = os.path.join(ROOT, 'perf', 'results', 'threads_bench_%d.json' % threads)
+    subprocess.run([os.path.join(build, 'bin', 'bench_kernels'), '--benchmark_filter=BM_Assembly',
+                    '--benchmark_min_time=1', '--benchmark_out=' + out, '--benchmark_out_format=json'],
+                   env=env, check=True, capture_output=True)
+    return {b['name']: b['tets_per_s'] for b in json.load(open(out))['benchmarks']}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument('--build', default='build-omp')
+    ap.add_argument('--threads', type=int, nargs='+', default=[1, 2])
+    ap.add_argument('--sizes', nargs='+', default=['0.026', '0.0129'])
+    ap.add_argument('--steps', type=int, default=10)
+    ap.add_argument('--phases', nargs='+', default=['flight', 'impact'])
+    a = ap.parse_args()
+    build = os.path.join(ROOT, a.build)
+    os.makedirs(os.path.join(ROOT, 'perf', 'results'), exist_ok=True)
+    bench = {n: assembly_rate(build, n) for n in a.threads}
+    runs = [run(build, size, 1, a.steps, phase, threads=n)
+            for phase in a.phases for size in a.sizes for n in a.threads]
+    json.dump(dict(date=datetime.date.today().isoformat(), assembly=bench, runs=runs),
+              open(os.path.join(ROOT, 'perf', 'results', 'threads.json'), 'w'), indent=1)
+    n1 = a.threads[0]
+    md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s` (Kokkos OpenMP, one rank, '
+          '`OMP_PROC_BIND=spread OMP_PLACES=threads`; efficiency t1 / (N tN)).' % (datetime.date.today(), a.build), '',
+          '| benchmark | threads | tets/s | efficiency |', '|---|---|---|---|']
+    for name in bench[n1]:
+        for n in a.threads:
+            md.append('| %s | %d | %.3gM | %.0f%% |' % (name, n, bench[n][name] / 1e6, 100 * bench[n][name] / (n * bench[n1][name])))
+    md += ['', '| phase | tets | threads | wall s/step | Newton its/step | Krylov its/solve | s/step: ' + ' / '.join(TIMERS) +
+           ' | efficiency |', '|---|---|---|---|---|---|---|---|']
+    for r in runs:
+        one = next(x for x in runs if x['phase'] == r['phase'] and x['size'] == r['size'] and x['threads'] == n1)
+        md.append('| %s | %d | %d | %.4f | %.2f | %.1f | %s | %.0f%% |' % (
+            r['phase'], r['tets'], r['threads'], r['s_per_step'], r['newton_per_step'], r['krylov_per_solve'],
+            ' / '.join('%.4f' % r.get(t, 0) for t in TIMERS), 100 * one['s_per_step'] / (r['threads'] * r['s_per_step'])))
+    text = '\n'.join(md)
+    print(text)
+    replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'threads', text, '## Thread scaling')
+
+
+if __name__ == '__main__':
+    main()
