@@ -31,7 +31,6 @@ BlocksHeader read_header(Scanner& s, const std::string& item, std::size_t ascii_
   h.total = s.size("the total count");
   h.min_tag = s.size("the minimum tag");
   h.max_tag = s.size("the maximum tag");
-  s.end_line("the section header");
   s.check_count(h.blocks, 8, 20, "the number of entity blocks");
   s.check_count(h.total, ascii_each, binary_each, "the number of " + item + "s");
   if (h.total > kMaxCount) {
@@ -42,6 +41,7 @@ BlocksHeader read_header(Scanner& s, const std::string& item, std::size_t ascii_
     s.fail("the " + item + " tag range [" + std::to_string(h.min_tag) + ", " +
            std::to_string(h.max_tag) + "] is invalid; tags are positive and min <= max");
   }
+  s.end_line("the section header");
   return h;
 }
 
@@ -66,8 +66,7 @@ MshData::DimTag read_block_entity(ParseState& p) {
 void check_tag(Scanner& s, const BlocksHeader& h, std::uint64_t tag, const char* item) {
   if (tag >= h.min_tag && tag <= h.max_tag) return;
   s.fail(std::string(item) + " tag " + std::to_string(tag) + " is outside the range [" +
-         std::to_string(h.min_tag) + ", " + std::to_string(h.max_tag) +
-         "] of the section header");
+         std::to_string(h.min_tag) + ", " + std::to_string(h.max_tag) + "] of the section header");
 }
 
 /// Refuses a block of `n` items when the blocks before hold `read` of the header's total.
@@ -84,25 +83,10 @@ struct NodeList {
   std::vector<double> xyz;
 };
 
-/// One node block: header, tags, then coordinates (and parametric coordinates, skipped).
-void read_node_block(ParseState& p, const BlocksHeader& h, NodeList& nodes) {
-  Scanner& s = p.s;
-  const MshData::DimTag entity = read_block_entity(p);
-  const int parametric = s.integer("the parametric flag");
-  if (parametric != 0 && parametric != 1) {
-    s.fail("parametric flag " + std::to_string(parametric) + "; allowed: 0 or 1");
-  }
-  const std::uint64_t n = s.size("the number of nodes in the block");
-  s.end_line("the block header");
-  const std::size_t params = parametric ? static_cast<std::size_t>(entity.first) : 0;
-  s.check_count(n, 8 + 2 * params, 32 + 8 * params, "the number of nodes in the block");
-  check_block_total(s, h, n, nodes.tags.size(), "nodes");
-  const std::size_t first = nodes.tags.size();
-  for (std::uint64_t i = 0; i < n; ++i) {
-    nodes.tags.push_back(s.size("a node tag"));
-    check_tag(s, h, nodes.tags.back(), "node");
-    s.end_line("the node tag");
-  }
+/// The coordinates "x y z [u [v [w]]]" of the `n` nodes of a block whose tags were read last;
+/// `params` parametric coordinates per node are skipped.
+void read_node_coordinates(Scanner& s, std::uint64_t n, std::size_t params, NodeList& nodes) {
+  const std::size_t first = nodes.tags.size() - n;
   for (std::uint64_t i = 0; i < n; ++i) {
     double x[3];
     for (double& v : x) v = s.real("a node coordinate");
@@ -117,6 +101,27 @@ void read_node_block(ParseState& p, const BlocksHeader& h, NodeList& nodes) {
     s.end_line("the node coordinates");
     nodes.xyz.insert(nodes.xyz.end(), x, x + 3);
   }
+}
+
+/// One node block: header, tags, then coordinates (and parametric coordinates, skipped).
+void read_node_block(ParseState& p, const BlocksHeader& h, NodeList& nodes) {
+  Scanner& s = p.s;
+  const MshData::DimTag entity = read_block_entity(p);
+  const int parametric = s.integer("the parametric flag");
+  if (parametric != 0 && parametric != 1) {
+    s.fail("parametric flag " + std::to_string(parametric) + "; allowed: 0 or 1");
+  }
+  const std::uint64_t n = s.size("the number of nodes in the block");
+  const std::size_t params = parametric ? static_cast<std::size_t>(entity.first) : 0;
+  s.check_count(n, 8 + 2 * params, 32 + 8 * params, "the number of nodes in the block");
+  check_block_total(s, h, n, nodes.tags.size(), "nodes");
+  s.end_line("the block header");
+  for (std::uint64_t i = 0; i < n; ++i) {
+    nodes.tags.push_back(s.size("a node tag"));
+    check_tag(s, h, nodes.tags.back(), "node");
+    s.end_line("the node tag");
+  }
+  read_node_coordinates(s, n, params, nodes);
 }
 
 /// The node table of `d`, sorted by tag; refuses a tag given twice.
@@ -152,9 +157,8 @@ void read_element(Scanner& s, const MshData& d, const BlocksHeader& h, const Ele
     if (keep) keep->node_tags.push_back(node);
   }
   if (s.try_end_line()) return;
-  s.fail("element " + std::to_string(tag) + " has more than the " +
-         std::to_string(t.num_nodes) + " nodes of element type " + std::to_string(t.type) +
-         " ('" + t.name + "')");
+  s.fail("element " + std::to_string(tag) + " has more than the " + std::to_string(t.num_nodes) +
+         " nodes of element type " + std::to_string(t.type) + " ('" + t.name + "')");
 }
 
 /// The element type of a block header on an entity of dimension `dim`.
@@ -180,10 +184,10 @@ void read_element_block(ParseState& p, const BlocksHeader& h, std::vector<std::s
   const MshData::DimTag entity = read_block_entity(p);
   const ElementType& t = read_element_type(s, entity.first);
   const std::uint64_t n = s.size("the number of elements in the block");
-  s.end_line("the block header");
   const std::size_t each = 1 + static_cast<std::size_t>(t.num_nodes);
   s.check_count(n, 2 * each, 8 * each, "the number of elements in the block");
   check_block_total(s, h, n, all_tags.size(), "elements");
+  s.end_line("the block header");
   ElementBlock block;
   block.dim = entity.first;
   block.entity = entity.second;
@@ -194,7 +198,9 @@ void read_element_block(ParseState& p, const BlocksHeader& h, std::vector<std::s
     block.element_tags.reserve(n);
     block.node_tags.reserve(n * static_cast<std::size_t>(t.num_nodes));
   }
-  for (std::uint64_t i = 0; i < n; ++i) read_element(s, p.d, h, t, keep ? &block : nullptr, all_tags);
+  for (std::uint64_t i = 0; i < n; ++i)
+    read_element(s, p.d, h, t, keep ? &block : nullptr, all_tags);
+  p.d.entity_blocks[entity].push_back(p.d.blocks.size());
   p.d.blocks.push_back(std::move(block));
 }
 
@@ -223,7 +229,8 @@ void read_elements(ParseState& p) {
   }
   std::sort(tags.begin(), tags.end());
   const auto twice = std::adjacent_find(tags.begin(), tags.end());
-  if (twice != tags.end()) s.fail_section("element tag " + std::to_string(*twice) + " is used twice");
+  if (twice != tags.end())
+    s.fail_section("element tag " + std::to_string(*twice) + " is used twice");
 }
 
 }  // namespace emc::mesh::msh

@@ -41,11 +41,15 @@ struct ElementBlock {
 /// entity exists, tags are unique and within the declared ranges, coordinates are finite.
 struct MshData {
   using DimTag = std::pair<int, int>;
-  std::map<DimTag, std::string> physical_names;        ///< (dim, physical tag) -> name
+  std::map<DimTag, std::string> physical_names;         ///< (dim, physical tag) -> name
   std::map<DimTag, std::vector<int>> entity_physicals;  ///< (dim, entity tag) -> physical tags
   std::vector<std::size_t> node_tags;                   ///< sorted, unique
   std::vector<double> coords;                           ///< 3 per node, in node_tags order
   std::vector<ElementBlock> blocks;                     ///< in file order
+  /// (dim, entity tag) -> indices in `blocks` of the entity's blocks, in file order.
+  std::map<DimTag, std::vector<std::size_t>> entity_blocks;
+  /// (dim, physical tag) -> sorted entity tags of the physical group (from entity_physicals).
+  std::map<DimTag, std::vector<int>> group_entities;
 };
 
 /// Parses the .msh 4.1 file whose content is `text`; `where` ("<where>: '<file>'") prefixes

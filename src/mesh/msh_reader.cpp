@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
+#include <map>
 #include <sstream>
 
 #include "emcontact/error.hpp"
@@ -44,25 +44,34 @@ std::string physical_name(const MshData& d, int dim, int tag) {
 
 /// The physical groups of dimension `dim` that hold an entity, sorted by tag.
 std::vector<int> physical_groups(const MshData& d, int dim) {
-  std::set<int> groups;
-  for (const auto& e : d.entity_physicals) {
-    if (e.first.first == dim) groups.insert(e.second.begin(), e.second.end());
+  std::vector<int> groups;
+  for (const auto& g : d.group_entities) {
+    if (g.first.first == dim) groups.push_back(g.first.second);
   }
-  return std::vector<int>(groups.begin(), groups.end());
+  return groups;
 }
 
 /// The sorted entities of dimension `dim` in physical group `group`, or all of them if
 /// `group` is 0.
 std::vector<int> group_entities(const MshData& d, int dim, int group) {
+  if (group != 0) {
+    const auto it = d.group_entities.find({dim, group});
+    return it == d.group_entities.end() ? std::vector<int>() : it->second;
+  }
   std::vector<int> entities;
   for (const auto& e : d.entity_physicals) {
-    const std::vector<int>& p = e.second;
-    if (e.first.first != dim) continue;
-    if (group == 0 || std::find(p.begin(), p.end(), group) != p.end()) {
-      entities.push_back(e.first.second);
-    }
+    if (e.first.first == dim) entities.push_back(e.first.second);  // sorted: the map is
   }
-  return entities;  // sorted: the map is
+  return entities;
+}
+
+/// The element blocks of entity `entity` of dimension `dim`, in file order.
+std::vector<const msh::ElementBlock*> entity_blocks(const MshData& d, int dim, int entity) {
+  std::vector<const msh::ElementBlock*> out;
+  const auto it = d.entity_blocks.find({dim, entity});
+  if (it == d.entity_blocks.end()) return out;
+  for (std::size_t b : it->second) out.push_back(&d.blocks[b]);
+  return out;
 }
 
 /// The sorted entities of the physical volume `volume`; throws listing the available names.
@@ -90,13 +99,15 @@ std::vector<int> volume_entities(const MshData& d, const std::string& volume,
 
 /// The element tags and node tags of the elements of `type` in the entities of dimension `dim`
 /// given, entity by entity, in file order within an entity.
-detail::GmshTets elements_of(const MshData& d, int dim, int type, const std::vector<int>& entities) {
+detail::GmshTets elements_of(const MshData& d, int dim, int type,
+                             const std::vector<int>& entities) {
   detail::GmshTets out;
   for (int entity : entities) {
-    for (const msh::ElementBlock& b : d.blocks) {
-      if (b.dim != dim || b.entity != entity || b.type != type) continue;
-      out.element_tags.insert(out.element_tags.end(), b.element_tags.begin(), b.element_tags.end());
-      out.node_tags.insert(out.node_tags.end(), b.node_tags.begin(), b.node_tags.end());
+    for (const msh::ElementBlock* b : entity_blocks(d, dim, entity)) {
+      if (b->type != type) continue;
+      out.element_tags.insert(out.element_tags.end(), b->element_tags.begin(),
+                              b->element_tags.end());
+      out.node_tags.insert(out.node_tags.end(), b->node_tags.begin(), b->node_tags.end());
     }
   }
   return out;
@@ -107,8 +118,8 @@ detail::GmshTets elements_of(const MshData& d, int dim, int type, const std::vec
 const msh::ElementBlock* other_type(const MshData& d, int dim, int type,
                                     const std::vector<int>& entities) {
   for (int entity : entities) {
-    for (const msh::ElementBlock& b : d.blocks) {
-      if (b.dim == dim && b.entity == entity && b.type != type && b.count > 0) return &b;
+    for (const msh::ElementBlock* b : entity_blocks(d, dim, entity)) {
+      if (b->type != type && b->count > 0) return b;
     }
   }
   return nullptr;
@@ -127,26 +138,78 @@ detail::GmshTets volume_tets(const MshData& d, std::vector<int> entities,
   return elements_of(d, 3, kTetrahedron, entities);
 }
 
-/// The 3-node triangles of physical surface `group` whose nodes all belong to the body.
-std::vector<Tri> physical_triangles(const MshData& d, int group,
-                                    const std::vector<std::size_t>& used_tags) {
-  const detail::GmshTets t = elements_of(d, 2, kTriangle, group_entities(d, 2, group));
-  std::vector<Tri> tris;
-  for (std::size_t i = 0; i + 2 < t.node_tags.size(); i += 3) {
-    Tri tri{};
-    for (int k = 0; k < 3; ++k) tri[k] = detail::local_node(used_tags, t.node_tags[i + k]);
-    if (tri[0] >= 0 && tri[1] >= 0 && tri[2] >= 0) tris.push_back(tri);
+/// detail::orient_on_body for each triangle of `tris`, with one face search for all: its
+/// outward orientation, itself on an internal face, or {-1, -1, -1} if it is no face of the
+/// body. (orient_on_body keeps the order and drops exactly the triangles whose node set is no
+/// face, so a dropped triangle never has the node set of the next kept one.)
+std::vector<Tri> orient_each(const BodyMesh& m, const std::vector<Tri>& tris) {
+  const std::vector<Tri> kept = detail::orient_on_body(m, tris);
+  const auto key = [](Tri t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::vector<Tri> out(tris.size(), Tri{-1, -1, -1});
+  for (std::size_t i = 0, j = 0; i < tris.size() && j < kept.size(); ++i) {
+    if (key(tris[i]) == key(kept[j])) out[i] = kept[j++];
   }
-  return tris;
+  return out;
+}
+
+/// The 3-node triangles of every surface entity whose nodes all belong to the body (node
+/// indices of `m`), oriented outward on the body if `orient`, by entity tag.
+std::map<int, std::vector<Tri>> entity_triangles(const MshData& d, const BodyMesh& m,
+                                                 const std::vector<std::size_t>& used_tags,
+                                                 bool orient) {
+  std::vector<Tri> tris;
+  std::vector<int> owners;
+  for (int entity : group_entities(d, 2, 0)) {
+    const detail::GmshTets t = elements_of(d, 2, kTriangle, {entity});
+    for (std::size_t i = 0; i + 2 < t.node_tags.size(); i += 3) {
+      Tri tri{};
+      for (int k = 0; k < 3; ++k) tri[k] = detail::local_node(used_tags, t.node_tags[i + k]);
+      if (tri[0] < 0 || tri[1] < 0 || tri[2] < 0) continue;
+      tris.push_back(tri);
+      owners.push_back(entity);
+    }
+  }
+  if (orient) tris = orient_each(m, tris);
+  std::map<int, std::vector<Tri>> out;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    if (tris[i][0] >= 0) out[owners[i]].push_back(tris[i]);
+  }
+  return out;
+}
+
+/// Refuses physical surfaces that hold, in all, over 16 times the triangles on the body (plus
+/// 10^6): entities in very many groups would exhaust the memory.
+void check_surface_sizes(const MshData& d, const std::map<int, std::vector<Tri>>& by_entity,
+                         const std::string& where) {
+  std::size_t on_body = 0, total = 0;
+  for (const auto& e : by_entity) on_body += e.second.size();
+  for (int group : physical_groups(d, 2)) {
+    for (int entity : group_entities(d, 2, group)) {
+      const auto it = by_entity.find(entity);
+      if (it != by_entity.end()) total += it->second.size();
+    }
+  }
+  if (total <= 16 * on_body + 1000000) return;
+  throw InputError(where + ": the physical surfaces hold " + std::to_string(total) +
+                   " triangles in all, more than 16 times the " + std::to_string(on_body) +
+                   " triangles on the body (plus 10^6); is a surface in that many groups?");
 }
 
 /// Every physical surface's triangles on the body (re-oriented outward if `orient`), by
 /// name; a surface with no triangle on the body is skipped. Sorted (deterministic).
 void read_surfaces(const MshData& d, BodyMesh& m, const std::vector<std::size_t>& used_tags,
-                   bool orient) {
+                   bool orient, const std::string& where) {
+  const std::map<int, std::vector<Tri>> by_entity = entity_triangles(d, m, used_tags, orient);
+  check_surface_sizes(d, by_entity, where);
   for (int group : physical_groups(d, 2)) {
-    std::vector<Tri> tris = physical_triangles(d, group, used_tags);
-    if (orient) tris = detail::orient_on_body(m, tris);
+    std::vector<Tri> tris;
+    for (int entity : group_entities(d, 2, group)) {
+      const auto it = by_entity.find(entity);
+      if (it != by_entity.end()) tris.insert(tris.end(), it->second.begin(), it->second.end());
+    }
     if (tris.empty()) continue;
     std::vector<Tri>& named = m.surfaces[physical_name(d, 2, group)];
     named.insert(named.end(), tris.begin(), tris.end());
@@ -213,7 +276,7 @@ BodyMesh rigid_surface(const MshData& d, const std::string& where) {
     for (int k = 0; k < 3; ++k) all[e][k] = detail::local_node(used_tags, t.node_tags[3 * e + k]);
   }
   check_triangles(m, all, t.element_tags, where);
-  read_surfaces(d, m, used_tags, false);
+  read_surfaces(d, m, used_tags, false, where);
   m.surfaces["surface"] = std::move(all);  // always all triangles (replaces a group "surface")
   detail::sort_triangles(m.surfaces["surface"]);
   return m;
@@ -239,7 +302,7 @@ BodyMesh mesh_of(const MshData& d, const std::string& volume, const std::string&
   std::vector<std::size_t> used_tags;
   BodyMesh m = detail::body_from_tags(tets, d.node_tags, d.coords, used_tags);
   check_tets(m, where, tets.element_tags);  // a user mesh is never silently fixed
-  read_surfaces(d, m, used_tags, true);
+  read_surfaces(d, m, used_tags, true, where);
   return m;
 }
 

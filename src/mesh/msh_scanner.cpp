@@ -74,7 +74,8 @@ std::uint64_t Scanner::size(const char* what) {
   std::uint64_t v = 0;
   const char* first = after_plus(t);
   const auto r = std::from_chars(first, t.data() + t.size(), v);
-  if (r.ec == std::errc::result_out_of_range) fail(std::string(what) + " " + quote(t) + " is too large");
+  if (r.ec == std::errc::result_out_of_range)
+    fail(std::string(what) + " " + quote(t) + " is too large");
   if (r.ec != std::errc() || r.ptr != t.data() + t.size()) {
     fail(std::string("expected ") + what + " (a non-negative integer), found " + quote(t));
   }
@@ -150,7 +151,7 @@ void Scanner::check_count(std::uint64_t count, std::size_t ascii_bytes, std::siz
   const std::size_t each = binary_ ? binary_bytes : ascii_bytes;
   const std::size_t left = text_.size() - pos_;
   if (count <= left / each) return;
-  fail(what + " " + std::to_string(count) + " is more than the rest of the file can hold (" +
+  fail(what + " (" + std::to_string(count) + ") is more than the rest of the file can hold (" +
        std::to_string(left) + " bytes left, at least " + std::to_string(each) + " per item)");
 }
 

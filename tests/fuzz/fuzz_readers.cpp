@@ -5,7 +5,7 @@
 // Each of COUNT mutants of the seed files (tests/fuzz/mutator.hpp, deterministic in SEED) is
 // written to WORKDIR/current.<kind> and read by the real reader:
 //   xml  emc::input::read_input (Teuchos XML, schema validation, cross-checks);
-//   msh  emc::mesh::read_msh through Gmsh, then the checks and derived data every run uses
+//   msh  emc::mesh::read_msh (our strict parser), then the checks and derived data every run uses
 //        (boundary triangles, surface nodes);
 //   set  emc::input::read_input with a mutated --set override of the first seed file.
 // A mutant must either be accepted or be refused with emc::InputError whose message names the

@@ -1,6 +1,6 @@
 #pragma once
 // Built-in meshes (through Gmsh's C++ API, OpenCASCADE kernel), the rigid surfaces (`plane`,
-// `rectangle`) and the Gmsh .msh reader.
+// `rectangle`) and the reader of Gmsh .msh files (our own strict parser).
 #include <Teuchos_ParameterList.hpp>
 
 #include "emcontact/mesh/body_mesh.hpp"
@@ -20,8 +20,9 @@ bool is_rigid_surface_type(const std::string& type);
 BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string& input_dir,
                     const std::string& where);
 
-/// Reads a Gmsh .msh file (format 4.1) through Gmsh's API: all 4-node tets (or those of the
-/// physical volume `volume` if not empty) and every physical surface as a named surface.
+/// Reads a Gmsh .msh file (format 4.1) with our strict parser (src/mesh/msh_parser.hpp: ASCII
+/// or binary, every count, tag and reference checked, no Gmsh involved): all 4-node tets (or
+/// those of the physical volume `volume` if not empty) and every physical surface as a named surface.
 /// A file with no tets at all but 3-node triangles (and `volume` empty) is a rigid surface:
 /// the triangles' nodes, no tets, every physical surface by name plus `surface` (all
 /// triangles), oriented as in the file.

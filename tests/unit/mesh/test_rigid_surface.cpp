@@ -244,7 +244,7 @@ struct WrittenSurface {
   std::map<std::size_t, Vec3> coords;
 };
 
-WrittenSurface write_surface_msh(const std::string& file) {
+WrittenSurface write_surface_msh(const std::string& file, bool binary = false) {
   gmsh::initialize(0, nullptr, false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::model::add("rigid");
@@ -267,6 +267,7 @@ WrittenSurface write_surface_msh(const std::string& file) {
     w.coords[node_tags[i]] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
   }
   gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::option::setNumber("Mesh.Binary", binary ? 1 : 0);
   gmsh::write(file);
   gmsh::finalize();
   return w;
@@ -352,6 +353,18 @@ TEST(RigidMsh, TrianglesOnlyFileWrittenByGmshIsARigidSurface) {
   }
 }
 
+TEST(RigidMsh, BinaryTrianglesOnlyFileGivesTheSameSurfaceAsAscii) {
+  ScratchDir dir("rigid_binary");
+  write_surface_msh(dir.file("ascii.msh"));
+  write_surface_msh(dir.file("binary.msh"), true);
+  const BodyMesh a = read_msh(dir.file("ascii.msh"), "", "test");
+  const BodyMesh b = read_msh(dir.file("binary.msh"), "", "test");
+  expect_rigid(b);
+  EXPECT_EQ(b.surfaces, a.surfaces);
+  ASSERT_EQ(b.X.size(), a.X.size());
+  for (std::size_t i = 0; i < a.X.size(); ++i) EXPECT_NEAR(b.X[i], a.X[i], 1e-15);  // 16 digits
+}
+
 void write_text(const std::string& file, const std::string& text) {
   std::ofstream(file) << text;
 }
@@ -411,6 +424,17 @@ TEST(RigidMsh, FileWithoutTetsOrTrianglesAndDegenerateTrianglesAreRefused) {
   write_text(dir.file("quad.msh"), flat_msh("1 1 1 1\n2 1 3 1\n1 1 2 3 4\n"));
   msg = read_error(dir.file("quad.msh"));
   EXPECT_NE(msg.find("only 3-node triangles"), std::string::npos) << msg;
+  // A triangle on a node the file does not have, and one with a missing node.
+  write_text(dir.file("ref.msh"), flat_msh("1 1 1 1\n2 1 2 1\n1 1 3 6\n"));
+  msg = read_error(dir.file("ref.msh"));
+  EXPECT_NE(msg.find("ref.msh': line 30 ($Elements): element 1 refers to node 6, which is not "
+                     "in $Nodes"),
+            std::string::npos)
+      << msg;
+  write_text(dir.file("short.msh"), flat_msh("1 1 1 1\n2 1 2 1\n1 1 3\n"));
+  msg = read_error(dir.file("short.msh"));
+  EXPECT_NE(msg.find("line 30 ($Elements): expected a node tag of the element"), std::string::npos)
+      << msg;
 }
 
 }  // namespace
