@@ -15,16 +15,30 @@ struct Monitors {
 
   KOKKOS_INLINE_FUNCTION Monitors() = default;
   KOKKOS_INLINE_FUNCTION Monitors& operator+=(const Monitors& o) {
-    kinetic += o.kinetic;
-    elastic += o.elastic;
-    potential += o.potential;
-    mass += o.mass;
-    for (int i = 0; i < 3; ++i) {
-      L[i] += o.L[i];
-      J[i] += o.J[i];
-      moment[i] += o.moment[i];
-    }
+    add(*this, o);
     return *this;
+  }
+  /// The volatile join Kokkos 3.4's threaded (OpenMP) reductions call.
+  KOKKOS_INLINE_FUNCTION void operator+=(const volatile Monitors& o) volatile { add(*this, o); }
+  /// Copies from a volatile reduction value (Kokkos 3.4's threaded reductions).
+  KOKKOS_INLINE_FUNCTION Monitors(const volatile Monitors& o) {
+    *this = const_cast<const Monitors&>(o);
+  }
+  KOKKOS_INLINE_FUNCTION Monitors(const Monitors&) = default;
+  KOKKOS_INLINE_FUNCTION Monitors& operator=(const Monitors&) = default;
+
+ private:
+  template <class A, class B>
+  KOKKOS_INLINE_FUNCTION static void add(A& a, const B& o) {
+    a.kinetic += o.kinetic;
+    a.elastic += o.elastic;
+    a.potential += o.potential;
+    a.mass += o.mass;
+    for (int i = 0; i < 3; ++i) {
+      a.L[i] += o.L[i];
+      a.J[i] += o.J[i];
+      a.moment[i] += o.moment[i];
+    }
   }
 };
 

@@ -15,7 +15,8 @@ from scaling_report import TIMERS, run  # noqa: E402
 
 def assembly_rate(build, threads):
     env = dict(ENV, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND='spread', OMP_PLACES='threads')
-    out = os.path.join(ROOT, 'perf', 'results', 'threads_bench_%d.json' % threads)
+    out = os.path.join(ROOT, 'out', 'threads_bench_%d.json' % threads)
+    os.makedirs(os.path.dirname(out), exist_ok=True)
     subprocess.run([os.path.join(build, 'bin', 'bench_kernels'), '--benchmark_filter=BM_Assembly',
                     '--benchmark_min_time=1', '--benchmark_out=' + out, '--benchmark_out_format=json'],
                    env=env, check=True, capture_output=True)
@@ -38,8 +39,9 @@ def main():
     json.dump(dict(date=datetime.date.today().isoformat(), assembly=bench, runs=runs),
               open(os.path.join(ROOT, 'perf', 'results', 'threads.json'), 'w'), indent=1)
     n1 = a.threads[0]
-    md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s` (Kokkos OpenMP, one rank, '
-          '`OMP_PROC_BIND=spread OMP_PLACES=threads`; efficiency t1 / (N tN)).' % (datetime.date.today(), a.build), '',
+    md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s --steps %d` (Kokkos OpenMP, one rank, '
+          '`OMP_PROC_BIND=spread OMP_PLACES=threads`; the phases as in the scaling table; efficiency t1 / (N tN)).'
+          % (datetime.date.today(), a.build, a.steps), '',
           '| benchmark | threads | tets/s | efficiency |', '|---|---|---|---|']
     for name in bench[n1]:
         for n in a.threads:

@@ -14,8 +14,8 @@ cmake --build build-asan -j "$(nproc)"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # LeakSanitizer is off: in multi-rank runs the MCA components Open MPI dlopen()s and closes
 # again (and Trilinos' static initializers) leave about 117 kB of allocations at exit in code
-# that is neither instrumented nor symbolizable once unloaded. scripts/lsan.supp silences them
-# for single-process runs: `EMC_LSAN=1 bash scripts/sanitize.sh -L unit` checks leaks there.
+# that is neither instrumented nor symbolizable once unloaded. EMC_LSAN=1 turns it on with
+# scripts/lsan.supp, which silences those of one-rank runs (e.g. test_elimination).
 if [ "${EMC_LSAN:-0}" = 1 ]; then
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1:fast_unwind_on_malloc=0:malloc_context_size=12"
   export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
