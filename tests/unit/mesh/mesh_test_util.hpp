@@ -13,7 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "emcontact/error.hpp"
 #include "emcontact/mesh/body_mesh.hpp"
+#include "emcontact/mesh/generate.hpp"
 
 namespace emc::mesh::test {
 
@@ -128,6 +130,36 @@ inline std::vector<Tri> all_named(const BodyMesh& m) {
 
 inline Teuchos::Array<double> arr(double x, double y, double z) {
   return Teuchos::Array<double>(std::vector<double>{x, y, z});
+}
+
+/// Mesh parameters of a built-in `type` with element size `size`.
+inline Teuchos::ParameterList params(const std::string& type, double size) {
+  Teuchos::ParameterList p("Mesh");
+  p.set("type", type);
+  p.set("size", size);
+  return p;
+}
+
+/// The error message of f(where) (a reader or generator call), or "" if it succeeds.
+template <class F>
+std::string input_error(F&& f, const std::string& where = "input.xml: Bodies/b/Mesh") {
+  try {
+    f(where);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// The error message of build_mesh(p), or "" if it succeeds.
+inline std::string build_error(const Teuchos::ParameterList& p,
+                               const std::string& where = "input.xml: Bodies/b/Mesh") {
+  return input_error([&](const std::string& w) { build_mesh(p, "", w); }, where);
+}
+
+/// The error message of read_msh(file, volume), or "" if it succeeds.
+inline std::string read_error(const std::string& file, const std::string& volume = "") {
+  return input_error([&](const std::string& w) { read_msh(file, volume, w); });
 }
 
 /// A fresh scratch directory for one test (removed by the caller's ScratchDir destructor).

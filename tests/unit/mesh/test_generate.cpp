@@ -22,22 +22,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Teuchos::ParameterList params(const std::string& type, double size) {
-  Teuchos::ParameterList p("Mesh");
-  p.set("type", type);
-  p.set("size", size);
-  return p;
-}
-
-/// The error message of build_mesh(p), or "" if it succeeds.
-std::string build_error(const Teuchos::ParameterList& p) {
-  try {
-    build_mesh(p, "", "input.xml: Bodies/b/Mesh");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 
 

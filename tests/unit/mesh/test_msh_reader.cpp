@@ -75,15 +75,6 @@ std::vector<int> to_local(const std::vector<std::size_t>& tags, const Written& w
   return out;
 }
 
-std::string read_error(const std::string& file, const std::string& volume = "") {
-  try {
-    read_msh(file, volume, "input.xml: Bodies/b/Mesh");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(ReadMsh, RoundTripOfGmshWrittenFile) {
   ScratchDir dir("roundtrip");
   const std::string file = dir.file("box.msh");

@@ -14,20 +14,9 @@
 namespace emc::mesh::test {
 namespace {
 
-Teuchos::ParameterList params(const std::string& type, double size) {
-  Teuchos::ParameterList p("Mesh");
-  p.set("type", type);
-  p.set("size", size);
-  return p;
-}
-
-std::string build_error(const Teuchos::ParameterList& p) {
-  try {
-    build_mesh(p, "", "input.xml: Bodies/floor/Mesh");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+/// The error message of build_mesh(p) for the body `floor`, or "".
+std::string floor_error(const Teuchos::ParameterList& p) {
+  return build_error(p, "input.xml: Bodies/floor/Mesh");
 }
 
 std::vector<int> all_nodes(const BodyMesh& m) {
@@ -128,10 +117,10 @@ TEST(RigidPlane, HugeHalfWidthIsCappedAt200By200Squares) {
 TEST(RigidPlane, BadParametersAreRefused) {
   Teuchos::ParameterList p = params("plane", 0.1);
   p.set("axis", arr(0, 0, 0));
-  EXPECT_NE(build_error(p).find("'axis' must be a nonzero vector"), std::string::npos);
+  EXPECT_NE(floor_error(p).find("'axis' must be a nonzero vector"), std::string::npos);
   p = params("plane", 0.1);
   p.set("half width", -1.0);
-  EXPECT_NE(build_error(p).find("half width"), std::string::npos) << build_error(p);
+  EXPECT_NE(floor_error(p).find("half width"), std::string::npos) << floor_error(p);
 }
 
 TEST(RigidPlane, GridCellsAreCappedForAnyAspectRatio) {
@@ -202,29 +191,29 @@ TEST(RigidRectangle, EveryOrientation) {
 
 TEST(RigidRectangle, BadCornersAndAxisAreRefused) {
   Teuchos::ParameterList p = params("rectangle", 0.1);  // default corners: a unit box
-  std::string msg = build_error(p);
+  std::string msg = floor_error(p);
   EXPECT_NE(msg.find("input.xml: Bodies/floor/Mesh: type 'rectangle': 'upper corner' - 'lower "
                      "corner' is {1, 1, 1}; it must be zero in exactly one component"),
             std::string::npos)
       << msg;
   p.set("upper corner", arr(1, 0, 0));  // a segment
-  EXPECT_NE(build_error(p).find("is {1, 0, 0}; it must be zero in exactly one"), std::string::npos)
-      << build_error(p);
+  EXPECT_NE(floor_error(p).find("is {1, 0, 0}; it must be zero in exactly one"), std::string::npos)
+      << floor_error(p);
   p.set("upper corner", arr(1, -1, 0));  // negative extent
-  EXPECT_NE(build_error(p).find("positive in the other two"), std::string::npos);
+  EXPECT_NE(floor_error(p).find("positive in the other two"), std::string::npos);
   p.set("upper corner", arr(0, 1, 1));  // normal x, default axis z
-  msg = build_error(p);
+  msg = floor_error(p);
   EXPECT_NE(msg.find("parameter 'axis' {0, 0, 1} must be parallel to the rectangle's normal "
                      "direction x"),
             std::string::npos)
       << msg;
   EXPECT_NE(msg.find("{1, 0, 0} or {-1, 0, 0}"), std::string::npos) << msg;
   p.set("axis", arr(1, 0.1, 0));  // not parallel
-  EXPECT_NE(build_error(p).find("must be parallel"), std::string::npos);
+  EXPECT_NE(floor_error(p).find("must be parallel"), std::string::npos);
   p.set("axis", arr(0, 0, 0));
-  EXPECT_NE(build_error(p).find("must be parallel"), std::string::npos);
+  EXPECT_NE(floor_error(p).find("must be parallel"), std::string::npos);
   p.set("axis", arr(-1, 0, 0));
-  EXPECT_EQ(build_error(p), "");
+  EXPECT_EQ(floor_error(p), "");
 }
 
 TEST(RigidTypes, OnlyPlaneAndRectangleAreRigidTypes) {
@@ -398,15 +387,6 @@ TEST(RigidMsh, HandWrittenTriangleKeepsItsOrientation) {
   write_text(dir.file("flipped.msh"), flat_msh("1 1 1 1\n2 1 2 1\n1 1 4 3\n"));
   const BodyMesh f = read_msh(dir.file("flipped.msh"), "", "test");
   expect_normals(f, f.surfaces.at("side"), {-1, 0, 0});
-}
-
-std::string read_error(const std::string& file, const std::string& volume = "") {
-  try {
-    read_msh(file, volume, "input.xml: Bodies/b/Mesh");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(RigidMsh, FileWithoutTetsOrTrianglesAndDegenerateTrianglesAreRefused) {
