@@ -21,9 +21,7 @@ struct Monitors {
   /// The volatile join Kokkos 3.4's threaded (OpenMP) reductions call.
   KOKKOS_INLINE_FUNCTION void operator+=(const volatile Monitors& o) volatile { add(*this, o); }
   /// Copies from a volatile reduction value (Kokkos 3.4's threaded reductions).
-  KOKKOS_INLINE_FUNCTION Monitors(const volatile Monitors& o) {
-    *this = const_cast<const Monitors&>(o);
-  }
+  KOKKOS_INLINE_FUNCTION Monitors(const volatile Monitors& o) { add(*this, o); }  // 0 + o
   KOKKOS_INLINE_FUNCTION Monitors(const Monitors&) = default;
   KOKKOS_INLINE_FUNCTION Monitors& operator=(const Monitors&) = default;
 

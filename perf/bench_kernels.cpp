@@ -85,6 +85,20 @@ static void bumpy_surface(int n, std::vector<std::array<int, 3>>& facets, std::v
   }
 }
 
+/// Locates every query point (3 coordinates each); returns how many found a facet.
+static long locate_all(const emc::contact::FacetGrid& grid, const std::vector<double>& q) {
+  long found = 0;
+  for (std::size_t t = 0; t < q.size() / 3; ++t) found += grid.locate(&q[3 * t]).facet >= 0;
+  return found;
+}
+
+/// The counters of the contact benchmarks: surface size and queries per second.
+static void query_counters(benchmark::State& state, std::size_t facets, std::size_t queries) {
+  state.counters["facets"] = static_cast<double>(facets);
+  state.counters["queries_per_s"] =
+      benchmark::Counter(double(state.iterations()) * queries, benchmark::Counter::kIsRate);
+}
+
 static void BM_ContactSearch(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   std::vector<std::array<int, 3>> facets;
@@ -94,12 +108,10 @@ static void BM_ContactSearch(benchmark::State& state) {
   long found = 0;
   for (auto _ : state) {
     emc::contact::FacetGrid grid(facets, x, h);  // rebuilt every step in the solver
-    for (std::size_t t = 0; t < q.size() / 3; ++t) found += grid.locate(&q[3 * t]).facet >= 0;
+    found += locate_all(grid, q);
   }
   benchmark::DoNotOptimize(found);
-  state.counters["facets"] = facets.size();
-  state.counters["queries_per_s"] =
-      benchmark::Counter(double(state.iterations()) * q.size() / 3, benchmark::Counter::kIsRate);
+  query_counters(state, facets.size(), q.size() / 3);
 }
 BENCHMARK(BM_ContactSearch)->Arg(224)->Unit(benchmark::kMillisecond);
 
@@ -111,12 +123,9 @@ static void BM_ContactQueries(benchmark::State& state) {
   bumpy_surface(n, facets, x, q);
   emc::contact::FacetGrid grid(facets, x, 0.5 / n);
   long found = 0;
-  for (auto _ : state)
-    for (std::size_t t = 0; t < q.size() / 3; ++t) found += grid.locate(&q[3 * t]).facet >= 0;
+  for (auto _ : state) found += locate_all(grid, q);
   benchmark::DoNotOptimize(found);
-  state.counters["facets"] = facets.size();
-  state.counters["queries_per_s"] =
-      benchmark::Counter(double(state.iterations()) * q.size() / 3, benchmark::Counter::kIsRate);
+  query_counters(state, facets.size(), q.size() / 3);
 }
 BENCHMARK(BM_ContactQueries)->Arg(224)->Unit(benchmark::kMillisecond);
 
@@ -135,12 +144,9 @@ static void BM_ContactQueriesOrdered(benchmark::State& state) {
   for (int t : order) sorted.insert(sorted.end(), {q[3 * t], q[3 * t + 1], q[3 * t + 2]});
   emc::contact::FacetGrid grid(facets, x, 0.5 / n);
   long found = 0;
-  for (auto _ : state)
-    for (std::size_t t = 0; t < sorted.size() / 3; ++t) found += grid.locate(&sorted[3 * t]).facet >= 0;
+  for (auto _ : state) found += locate_all(grid, sorted);
   benchmark::DoNotOptimize(found);
-  state.counters["facets"] = facets.size();
-  state.counters["queries_per_s"] =
-      benchmark::Counter(double(state.iterations()) * sorted.size() / 3, benchmark::Counter::kIsRate);
+  query_counters(state, facets.size(), sorted.size() / 3);
 }
 BENCHMARK(BM_ContactQueriesOrdered)->Arg(224)->Unit(benchmark::kMillisecond);
 
