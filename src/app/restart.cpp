@@ -18,6 +18,7 @@ void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::s
   c.good_steps = s.good_steps;
   c.last_h = s.last_h;
   c.last_iterations = s.last_iterations;
+  c.newton_contraction = s.newton_contraction;
   c.u = dofs(*s.u);
   c.V = dofs(*s.V);
   int has = s.last_increment.is_null() ? 0 : 1;
@@ -55,7 +56,8 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   broadcast_vector(comm, msg);
   if (!msg.empty()) throw InputError(std::string(msg.begin(), msg.end()));
   std::vector<double> scalars = {double(c.step), c.t, c.dt, c.last_h, double(c.good_steps),
-                                 double(c.last_iterations), double(c.last_increment.size())};
+                                 double(c.last_iterations), double(c.last_increment.size()),
+                                 c.newton_contraction};
   broadcast_vector(comm, scalars);
   broadcast_vector(comm, c.active);
   broadcast_vector(comm, c.normal_force);
@@ -66,6 +68,7 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   s.last_h = scalars[3];
   s.good_steps = static_cast<int>(scalars[4]);
   s.last_iterations = static_cast<int>(scalars[5]);
+  s.newton_contraction = scalars[7];
   dofs.scatter(c.u, *s.u);
   dofs.scatter(c.V, *s.V);
   s.last_increment = Teuchos::null;

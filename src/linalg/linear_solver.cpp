@@ -4,6 +4,8 @@
 #include <BelosTpetraAdapter.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace emc::linalg {
@@ -42,11 +44,11 @@ void LinearSolver::build_preconditioner(const RCP<Matrix>& A) {
     prec_ = make_ifpack2(prec_type_, A, ifpack2_);
 }
 
-int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, bool& converged,
-                              std::string& message) {
+int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
+                              bool& converged, std::string& message) {
   using Problem = Belos::LinearProblem<double, MultiVector, Operator>;
   auto params = rcp(new Teuchos::ParameterList);
-  params->set("Convergence Tolerance", tol_);
+  params->set("Convergence Tolerance", tol);
   params->set("Maximum Iterations", max_iters_);
   if (type_ == "gmres") {
     params->set("Num Blocks", std::min(max_iters_, 300));
@@ -72,8 +74,10 @@ int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, 
   return solver->getNumIters();
 }
 
-SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x) {
+SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x, double tol) {
   SolveStats st;
+  tol = std::max(tol, tol_);
+  const double decades = std::max(1.0, -std::log10(tol));
   std::string message;
   if (type_ == "klu2") {
     solve_klu2(A, b, x);
@@ -84,16 +88,17 @@ SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x)
       st.fresh_preconditioner = true;
     }
     bool converged = false;
-    int its = belos_solve(A, b, x, converged, message);
+    int its = belos_solve(A, b, x, tol, converged, message);
     st.iterations = its;
-    const bool slow = its > std::max(2 * fresh_iters_, fresh_iters_ + 10);
+    const double expected = fresh_rate_ * decades;  // what a fresh one needs for this tol
+    const bool slow = its > std::max(2 * expected, expected + 10);
     if (!st.fresh_preconditioner && (!converged || slow)) {  // the reused one stopped working
       build_preconditioner(A);
       st.fresh_preconditioner = true;
-      its = belos_solve(A, b, x, converged, message);
+      its = belos_solve(A, b, x, tol, converged, message);
       st.iterations += its;
     }
-    if (st.fresh_preconditioner) fresh_iters_ = its;  // the count a fresh one achieves
+    if (st.fresh_preconditioner) fresh_rate_ = its / decades;  // what a fresh one achieves
   }
   // true residual check
   Vector r(b.getMap());
@@ -101,12 +106,12 @@ SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x)
   r.update(1.0, b, -1.0);
   const double bn = b.norm2();
   st.true_residual = bn > 0 ? r.norm2() / bn : r.norm2();
-  if (!(st.true_residual <= check_factor_ * tol_) && bn > 0) {
+  if (!(st.true_residual <= check_factor_ * tol) && bn > 0) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
                   "linear solver (%s) failed: true relative residual %.3e exceeds %.3e "
                   "(residual check factor x tolerance); ",
-                  description().c_str(), st.true_residual, check_factor_ * tol_);
+                  description().c_str(), st.true_residual, check_factor_ * tol);
     prec_ = Teuchos::null;
     throw LinearSolveError(buf + message);
   }

@@ -17,6 +17,11 @@ void set_newton(Teuchos::ParameterList& pl) {
          "Absolute tolerance of the Newton residual norm (0 = not used).", double_at_least(0.0));
   pl.set("max iterations", 25, "Newton iterations per step before the step counts as failed.",
          int_at_least(1));
+  pl.set("adaptive linear tolerance", true,
+         "Solve each Newton iteration's linear system only to a tenth of the residual the "
+         "quadratically converging Newton step leaves anyway (estimated from the residual "
+         "history), never tighter than Solver/Linear/tolerance requires and never below the "
+         "round-off floor; false: every solve to Solver/Linear/tolerance.");
 }
 
 void set_linear(Teuchos::ParameterList& pl) {
@@ -32,9 +37,11 @@ void set_linear(Teuchos::ParameterList& pl) {
                        {"Ifpack2 ILU", "Ifpack2 additive Schwarz", "MueLu algebraic multigrid",
                         "no preconditioner"}));
   pl.set("tolerance", 1e-10,
-         "Relative residual tolerance of the iterative solvers. Keep it below Newton's relative "
-         "tolerance: a linear solve less accurate than Newton's target costs an extra Newton "
-         "iteration per step (measured on inputs/ball.xml: 1.59 instead of 1 in free flight).",
+         "Relative residual tolerance of the iterative solvers: every solve's with "
+         "Solver/Newton/adaptive linear tolerance = false, else the tightest one (the solves "
+         "that decide Newton's last iterate). Keep it below Newton's relative tolerance: a "
+         "linear solve less accurate than Newton's target costs an extra Newton iteration per "
+         "step (measured on inputs/ball.xml: 1.59 instead of 1 in free flight).",
          positive_double());
   pl.set("max iterations", 1000, "Iterations of the iterative solvers.", int_at_least(1));
   pl.set("reuse preconditioner", true,

@@ -48,7 +48,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   try {
     write_vector(file, "scalars",
                  {double(c.step), c.t, c.dt, c.last_h, double(c.good_steps),
-                  double(c.last_iterations)},
+                  double(c.last_iterations), c.newton_contraction},
                  path);
     write_vector(file, "u", c.u, path);
     write_vector(file, "V", c.V, path);
@@ -71,13 +71,14 @@ Checkpoint read_checkpoint(const std::string& path) {
   Checkpoint c;
   try {
     const auto s = read_vector(file, "scalars", path);
-    if (s.size() != 6) throw Error(path + ": bad checkpoint scalars");
+    if (s.size() != 6 && s.size() != 7) throw Error(path + ": bad checkpoint scalars");
     c.step = static_cast<long>(s[0]);
     c.t = s[1];
     c.dt = s[2];
     c.last_h = s[3];
     c.good_steps = static_cast<int>(s[4]);
     c.last_iterations = static_cast<int>(s[5]);
+    c.newton_contraction = s.size() > 6 ? s[6] : 0.0;
     c.u = read_vector(file, "u", path);
     c.V = read_vector(file, "V", path);
     c.last_increment = read_vector(file, "last_increment", path);

@@ -124,6 +124,7 @@ StepReport Stepper::advance() {
   StepReport rep;
   const Vector& u0 = *s_.u;
   Vector u1(u0.getMap());
+  newton_.set_contraction(s_.newton_contraction);
   for (;;) {
     const double h = std::min(s_.dt, end_ - s_.t);
     if (solve_step(h, u1, rep)) {
@@ -133,6 +134,7 @@ StepReport Stepper::advance() {
       s_.last_increment->update(1.0, u1, -1.0, u0, 0.0);
       s_.last_h = h;
       s_.last_iterations = newton_.last().iterations;
+      s_.newton_contraction = newton_.contraction();
       s_.u->assign(u1);
       s_.t += h;
       ++s_.step;

@@ -37,8 +37,11 @@ class LinearSolver {
   /// `linear` is the validated `Solver/Linear` sublist.
   LinearSolver(const Teuchos::ParameterList& linear, Teuchos::RCP<const Comm> comm);
 
-  /// Solves A x = b from x = 0. Throws LinearSolveError if the true residual is too large.
-  SolveStats solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x);
+  /// Solves A x = b from x = 0 to the relative tolerance `tol` (<= 0: the input's tolerance;
+  /// never below it). Throws LinearSolveError if the true residual is too large.
+  SolveStats solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol = 0);
+  /// The input's (tightest) relative tolerance.
+  double tolerance() const { return tol_; }
 
   /// Forces a fresh preconditioner at the next solve (e.g. after a change of the active set).
   void invalidate() { prec_ = Teuchos::null; }
@@ -51,10 +54,10 @@ class LinearSolver {
   bool reuse_;
   Teuchos::ParameterList belos_, ifpack2_, muelu_;
   Teuchos::RCP<Operator> prec_;
-  int fresh_iters_ = 0;
+  double fresh_rate_ = 0;  ///< Krylov iterations per decade of a fresh preconditioner
 
-  int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, bool& converged,
-                  std::string& message);
+  int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
+                  bool& converged, std::string& message);
   void build_preconditioner(const Teuchos::RCP<Matrix>& A);
 };
 

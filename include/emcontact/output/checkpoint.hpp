@@ -11,6 +11,7 @@ struct Checkpoint {
   long step = 0;
   double t = 0, dt = 0, last_h = 0;
   int good_steps = 0, last_iterations = 0;
+  double newton_contraction = 0;  ///< absent from older checkpoints (then 0)
   std::vector<double> u, V;            ///< 3 per node, global order
   std::vector<double> last_increment;  ///< 3 per node, or empty (no step taken yet)
   std::vector<double> active;          ///< 5 per active slave: slave, pair, facet, xi, eta

@@ -18,6 +18,7 @@ namespace emc::time {
 struct NewtonOptions {
   double rtol = 1e-10, atol = 0;
   int max_iterations = 25;
+  bool adaptive_linear_tolerance = true;  ///< see Newton::linear_tolerance
 };
 NewtonOptions newton_options(const Teuchos::ParameterList& newton);
 
@@ -26,6 +27,7 @@ struct NewtonResult {
   int iterations = 0;         ///< linear solves done
   int linear_iterations = 0;  ///< Krylov iterations summed
   std::vector<double> residuals;  ///< ||P^T g|| per iterate
+  double floor = 0;               ///< the round-off floor (or atol) at the last iterate
   std::string failure;        ///< why it did not converge
 };
 
@@ -41,6 +43,10 @@ class Newton {
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
   /// The linear solver (the stepper drops its preconditioner when P changes).
   linalg::LinearSolver& solver() { return solver_; }
+  /// r_1 / r_0^2 of the last solve with two iterates: the first linear tolerance of the next
+  /// solve derives from it (part of the state: a restart must restore it to be bitwise).
+  double contraction() const { return contraction_; }
+  void set_contraction(double c) { contraction_ = c; }
   /// The result of the last solve (residual history).
   const NewtonResult& last() const { return last_; }
   /// The contactless residual g of eq. 20 at the last iterate (contact forces, §4).
@@ -48,6 +54,7 @@ class Newton {
 
  private:
   NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1);
+  double linear_tolerance(const std::vector<double>& r, double floor) const;
 
   const fem::Discretization& disc_;
   linalg::Elimination& elim_;
@@ -56,6 +63,7 @@ class Newton {
   Teuchos::RCP<FEMatrix> A_;  ///< built once on the FE graph, refilled every iteration
   Teuchos::RCP<Vector> g_;
   NewtonResult last_;
+  double contraction_ = 0;  ///< r_1 / r_0^2 of the last solve that had two iterates
   linalg::ConstraintHooks* hooks_ = nullptr;
 };
 

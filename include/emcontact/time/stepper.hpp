@@ -28,6 +28,7 @@ struct State {
   Teuchos::RCP<Vector> last_increment;  ///< u_n - u_{n-1}, for the predictor (null at start)
   double last_h = 0;                    ///< the step size of that increment
   int last_iterations = 0;              ///< Newton iterations of the last accepted solve
+  double newton_contraction = 0;        ///< Newton's r_1 / r_0^2 estimate (Newton::contraction)
 };
 
 struct StepReport {
