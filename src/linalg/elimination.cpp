@@ -45,9 +45,21 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
   int local = fixed.empty() && rows.empty() ? 0 : 1, global = 0;
   Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 1, &local, &global);
   identity_ = global == 0;
+  int mask = 1, all_mask = 1;  // every special row empty: P is a 0/1 diagonal
+  for (const auto& r : rows) mask &= r.cols.empty() ? 1 : 0;
+  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MIN, 1, &mask, &all_mask);
+  masked_ = all_mask == 1;
   fixed_ = fixed;
   rows_ = rows;
   P_ = build_P(rows);
+  if (masked_) {
+    auto keep = rcp(new Vector(owned_));
+    keep->putScalar(1.0);
+    auto k = keep->getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (GO g : fixed_) k(owned_->getLocalElement(g), 0) = 0.0;
+    for (const auto& r : rows_) k(owned_->getLocalElement(r.row), 0) = 0.0;
+    masked_reduction_.set_keep(keep);
+  }
   Pt_ = Teuchos::null;
   X_ = Teuchos::null;
   set_dummy_values(dummy_diag);
@@ -87,10 +99,17 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
     D_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
                            Teuchos::ArrayView<const double>(&v, 1));
   D_->fillComplete(owned_, owned_);
+  if (masked_) {
+    auto d = rcp(new Vector(owned_));
+    auto dv = d->getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (const auto& [g, v] : diag) dv(owned_->getLocalElement(g), 0) = v;
+    masked_reduction_.set_diagonal(d);
+  }
 }
 
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
+  if (masked_ && Pt_.is_null() && X_.is_null()) return masked_reduction_.apply(*A);
   RCP<Matrix> PtAP = rcp(new Matrix(owned_, 0));
   if (Pt_.is_null()) {
     Tpetra::TripleMatrixMultiply::MultiplyRAP(*P_, true, *A, false, *P_, false, *PtAP, true,

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "emcontact/linalg/masked_reduction.hpp"
 #include "emcontact/types.hpp"
 
 namespace emc::linalg {
@@ -75,6 +76,8 @@ class Elimination {
   std::vector<PRow> rows_;
   Teuchos::RCP<Matrix> build_P(const std::vector<PRow>& rows) const;
   bool identity_ = true;
+  bool masked_ = false;  ///< P is diagonal (0/1) on every rank: MaskedReduction, no products
+  mutable MaskedReduction masked_reduction_;
 };
 
 }  // namespace emc::linalg

@@ -5,6 +5,7 @@
 
 #include <Tpetra_Core.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -38,12 +39,9 @@ std::vector<double> dense_row(const Matrix& A, GO i) {
   return row;
 }
 
-}  // namespace
-
-TEST(Elimination, MatchesDenseReference) {
-  auto comm = Tpetra::getDefaultComm();
-  auto map = Teuchos::rcp(new Map(kN, 0, comm));
-  const auto Ad = dense_matrix();
+/// The dense matrix distributed over `map`.
+Teuchos::RCP<Matrix> distributed(const std::vector<std::vector<double>>& Ad,
+                                 const Teuchos::RCP<const Map>& map) {
   auto A = Teuchos::rcp(new Matrix(map, kN));
   for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
     const GO i = map->getGlobalElement(l);
@@ -57,6 +55,16 @@ TEST(Elimination, MatchesDenseReference) {
     A->insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const double>(vals));
   }
   A->fillComplete();
+  return A;
+}
+
+}  // namespace
+
+TEST(Elimination, MatchesDenseReference) {
+  auto comm = Tpetra::getDefaultComm();
+  auto map = Teuchos::rcp(new Map(kN, 0, comm));
+  const auto Ad = dense_matrix();
+  auto A = distributed(Ad, map);
 
   // node 0 fixed; node 5 (dofs 15-17) a stick slave on the facet of nodes 1, 2, 4 with
   // N = (0.2, 0.5, 0.3) (§4), whose dummies get beta; node 2 dof 7 is fixed too, so its
@@ -202,5 +210,59 @@ TEST(Elimination, MatchesDenseReference) {
     double expect = 0;
     for (int k = 0; k < 3; ++k) expect += N[k] * dh(3 * master[k] + c, 0);
     EXPECT_NEAR(dh(15 + c, 0), expect, 1e-14);
+  }
+}
+
+// A 0/1 diagonal P (fixed dofs, and stick slaves on rigid masters: empty rows) takes the
+// masked path (no sparse products): A's entries survive only in kept rows and columns, D sits
+// on the diagonal. Products with 1 and 0 are exact, so the result must equal the dense
+// reference exactly; a second matrix on the same graph and a new set of constraints too.
+TEST(Elimination, MaskedPathIsExact) {
+  auto comm = Tpetra::getDefaultComm();
+  auto map = Teuchos::rcp(new Map(kN, 0, comm));
+  auto Ad = dense_matrix();
+  std::vector<std::vector<GO>> fixed_sets = {{0, 1, 2, 7}, {4, 9, 10, 11}};
+  std::vector<std::vector<GO>> slave_sets = {{15, 16, 17}, {0, 1, 2, 12}};
+  const double beta = 2.5;
+  linalg::Elimination elim(map);
+  for (int pass = 0; pass < 3; ++pass) {
+    if (pass == 2)  // same graph, new values: the saved graph copy is reused
+      for (auto& row : Ad)
+        for (double& v : row)
+          if (v != 0) v *= -1.7;
+    const auto A = distributed(Ad, map);
+    const auto& fixed_all = fixed_sets[pass % 2];
+    const auto& slaves_all = slave_sets[pass % 2];
+    std::vector<GO> fixed;
+    std::vector<linalg::PRow> rows;
+    std::vector<std::pair<GO, double>> dummies;
+    for (GO g : fixed_all)
+      if (map->isNodeGlobalElement(g)) fixed.push_back(g);
+    for (GO g : slaves_all)
+      if (map->isNodeGlobalElement(g)) {
+        rows.push_back({g, {}, {}});
+        dummies.emplace_back(g, beta + g);
+      }
+    elim.set_constraints(fixed, rows, dummies);
+    const auto Ar = elim.reduce_matrix(A);
+    auto kept = [&](GO g) {
+      return std::find(fixed_all.begin(), fixed_all.end(), g) == fixed_all.end() &&
+             std::find(slaves_all.begin(), slaves_all.end(), g) == slaves_all.end();
+    };
+    int mismatches = 0;
+    for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+      const GO i = map->getGlobalElement(l);
+      const auto row = dense_row(*Ar, i);
+      for (int j = 0; j < kN; ++j) {
+        double expect = kept(i) && kept(j) ? Ad[i][j] : 0.0;
+        if (i == j && !kept(i))
+          expect = std::find(fixed_all.begin(), fixed_all.end(), i) != fixed_all.end() ? 1.0
+                                                                                        : beta + i;
+        mismatches += row[j] != expect;
+      }
+    }
+    int all = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mismatches, &all);
+    EXPECT_EQ(all, 0) << "pass " << pass;
   }
 }

@@ -1,0 +1,32 @@
+#pragma once
+// P^T A P + D when P is diagonal with entries 0 or 1 (ALGORITHM.md §3: fixed dofs, and full
+// stick against rigid masters, whose slave rows of P are empty): the entries of A in a
+// constrained row or column are zeroed and D is added on the diagonal, on a copy of A's graph
+// made once. No sparse products; the result is exactly the triple product's (products with
+// 1 and 0 are exact), with explicit zeros where the product would leave no entry.
+#include <Teuchos_RCP.hpp>
+
+#include "emcontact/types.hpp"
+
+namespace emc::linalg {
+
+class MaskedReduction {
+ public:
+  /// `keep`: 1 on the owned dofs P keeps, 0 on the constrained ones (when P changes).
+  void set_keep(Teuchos::RCP<const Vector> keep);
+  /// `d`: D's diagonal (when beta changes).
+  void set_diagonal(Teuchos::RCP<const Vector> d) { d_ = std::move(d); }
+  /// P^T A P + D, a new matrix on the saved copy of A's graph (collective).
+  Teuchos::RCP<Matrix> apply(const Matrix& A);
+
+ private:
+  Teuchos::RCP<const Vector> keep_, d_;
+  Teuchos::RCP<const Graph> graph_;               ///< copy of A's graph, made once
+  Teuchos::RCP<const Map> col_map_;               ///< A's column map it was made for
+  Kokkos::View<double*, ExecSpace> keep_col_;    ///< keep on A's local columns
+  bool keep_col_stale_ = true;
+  void copy_graph(const Matrix& A);
+  void import_keep(const Matrix& A);
+};
+
+}  // namespace emc::linalg

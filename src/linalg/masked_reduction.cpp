@@ -1,0 +1,78 @@
+#include "emcontact/linalg/masked_reduction.hpp"
+
+namespace emc::linalg {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+
+void MaskedReduction::set_keep(RCP<const Vector> keep) {
+  keep_ = std::move(keep);
+  keep_col_stale_ = true;
+}
+
+// The graph is copied (local arrays, the same maps, importer and exporter) so that the
+// reduced matrix does not share the FE graph, which switches between owned and owned+shared
+// rows at every assembly.
+void MaskedReduction::copy_graph(const Matrix& A) {
+  const auto& g = *A.getCrsGraph();
+  const auto lcl = g.getLocalGraphDevice();
+  using RowPtrs = typename Graph::local_graph_device_type::row_map_type::non_const_type;
+  using ColInds = typename Graph::local_graph_device_type::entries_type::non_const_type;
+  RowPtrs rows("emc::masked::rows", lcl.row_map.extent(0));
+  ColInds cols("emc::masked::cols", lcl.entries.extent(0));
+  Kokkos::deep_copy(rows, lcl.row_map);
+  Kokkos::deep_copy(cols, lcl.entries);
+  auto copy = rcp(new Graph(g.getRowMap(), g.getColMap(), rows, cols));
+  copy->expertStaticFillComplete(g.getDomainMap(), g.getRangeMap(), g.getImporter(),
+                                 g.getExporter());
+  graph_ = copy;
+  col_map_ = g.getColMap();
+  keep_col_stale_ = true;
+}
+
+void MaskedReduction::import_keep(const Matrix& A) {
+  Vector col(col_map_);
+  if (A.getCrsGraph()->getImporter().is_null())
+    col.assign(*keep_);  // the column map is the row map
+  else
+    col.doImport(*keep_, *A.getCrsGraph()->getImporter(), Tpetra::INSERT);
+  auto v = col.getLocalViewDevice(Tpetra::Access::ReadOnly);
+  keep_col_ = Kokkos::View<double*, ExecSpace>("emc::masked::keep_col", v.extent(0));
+  Kokkos::deep_copy(keep_col_, Kokkos::subview(v, Kokkos::ALL(), 0));
+  keep_col_stale_ = false;
+}
+
+// ALGORITHM.md §3: (P^T A P + D)_ij = p_i A_ij p_j + D_ij with p the 0/1 diagonal of P.
+RCP<Matrix> MaskedReduction::apply(const Matrix& A) {
+  if (graph_.is_null() || col_map_.get() != A.getColMap().get() ||
+      graph_->getNodeNumEntries() != A.getNodeNumEntries())
+    copy_graph(A);
+  if (keep_col_stale_) import_keep(A);
+  const auto lA = A.getLocalMatrixDevice();
+  const auto rows = lA.graph.row_map;
+  const auto cols = lA.graph.entries;
+  const auto vA = lA.values;
+  typename Matrix::local_matrix_device_type::values_type::non_const_type vals(
+      Kokkos::ViewAllocateWithoutInitializing("emc::masked::values"), vA.extent(0));
+  const auto keep_col = keep_col_;
+  const auto keep = keep_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const auto d = d_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const auto row_gid_col = A.getColMap()->getLocalMap();
+  const auto row_map = A.getRowMap()->getLocalMap();
+  Kokkos::parallel_for(
+      "emcontact::linalg::masked_ptap", Kokkos::RangePolicy<ExecSpace>(0, keep.extent(0)),
+      KOKKOS_LAMBDA(const int i) {
+        const LO diag_col = row_gid_col.getLocalElement(row_map.getGlobalElement(i));
+        for (auto j = rows(i); j < rows(i + 1); ++j) {
+          // P's entries are 1 or absent: A_ij itself or nothing (no 0 * inf)
+          double v = keep(i, 0) != 0 && keep_col(cols(j)) != 0 ? vA(j) : 0.0;
+          if (cols(j) == diag_col) v += d(i, 0);
+          vals(j) = v;
+        }
+      });
+  auto out = rcp(new Matrix(graph_, vals));
+  out->fillComplete(A.getDomainMap(), A.getRangeMap());
+  return out;
+}
+
+}  // namespace emc::linalg
