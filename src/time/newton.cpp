@@ -36,14 +36,18 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
 // those of an exact solve to within sigma, at a fraction of the Krylov iterations of a
 // solve to the input's tolerance (which stays the lower bound). An overestimated C loosens
 // one solve, whose residual then shows a C smaller by about sigma: the estimate recovers.
-double Newton::linear_tolerance(const std::vector<double>& r, double floor) const {
-  constexpr double sigma = 0.01, eta_max = 0.01;
-  if (!opt_.adaptive_linear_tolerance) return 0;
+double Newton::predicted_next(const std::vector<double>& r) const {
   const std::size_t k = r.size() - 1;
   const double C = k >= 1 ? r[k] / (r[k - 1] * r[k - 1]) : contraction_;
-  if (!(C > 0) || !(r[k] > 0) || !std::isfinite(C)) return 0;
-  const double next = C * r[k] * r[k];
-  return std::min(eta_max, sigma * std::max(next, floor) / r[k]);
+  if (!(C > 0) || !(r[k] > 0) || !std::isfinite(C)) return -1;
+  return C * r[k] * r[k];
+}
+
+double Newton::linear_tolerance(const std::vector<double>& r, double floor) const {
+  constexpr double sigma = 0.01, eta_max = 0.01;
+  const double next = predicted_next(r);
+  if (!opt_.adaptive_linear_tolerance || next < 0) return 0;
+  return std::min(eta_max, sigma * std::max(next, floor) / r.back());
 }
 
 NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
@@ -52,8 +56,9 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
     contraction_ = last_.residuals[1] / (last_.residuals[0] * last_.residuals[0]);
   static const bool trace = std::getenv("EMC_NEWTON_TRACE") != nullptr;
   if (trace && disc_.comm()->getRank() == 0) {  // debugging aid: residual history per solve
-    std::fprintf(stderr, "newton %s (floor %.2e, linear its %d):",
-                 last_.converged ? "converged" : "failed", last_.floor, last_.linear_iterations);
+    std::fprintf(stderr, "newton %s (floor %.2e, linear its %d, extra matrices %d):",
+                 last_.converged ? "converged" : "failed", last_.floor, last_.linear_iterations,
+                 last_.extra_assemblies);
     for (double r : last_.residuals) std::fprintf(stderr, " %.2e", r);
     std::fprintf(stderr, "\n");
   }
@@ -75,12 +80,23 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     hooks_->start(u0, u1);
   }
   const double eps = std::numeric_limits<double>::epsilon();
-  for (int it = 0;; ++it) {
+  // The residual at u1 and, with_matrix, the Newton matrix A_ (else A_ keeps the last one).
+  auto assemble = [&](bool with_matrix) {
     fem::AssemblyInfo info;
     {
       TimeMonitor tm(t_asm);
-      info = disc_.assemble(u0, V0, u1, dt, A_.get(), g, &scale);
+      info = disc_.assemble(u0, V0, u1, dt, with_matrix ? A_.get() : nullptr, g, &scale);
     }
+    res.matrices += with_matrix;
+    if (info.min_detF > 0 && hooks_) {
+      TimeMonitor tm(t_contact);
+      hooks_->before_reduce(u0, u1, g, *A_);
+    }
+    return info;
+  };
+  bool with_matrix = true;
+  for (int it = 0;; ++it) {
+    const fem::AssemblyInfo info = assemble(with_matrix);
     if (!(info.min_detF > 0)) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "element %lld inverted (det F = %.3e) at Newton iterate %d",
@@ -89,10 +105,6 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       return res;
     }
     RCP<Matrix> Ar;
-    if (hooks_) {
-      TimeMonitor tm(t_contact);
-      hooks_->before_reduce(u0, u1, g, *A_);
-    }
     {
       TimeMonitor tm(t_elim);
       elim_.reduce_residual(g, R);
@@ -106,8 +118,9 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     if (it == 0) r0 = r;
     // ALGORITHM.md §1: the tolerance never sits below the round-off of g's terms
     const double floor = std::max(opt_.atol, 100 * eps * scale.norm2());
+    const double target = std::max(opt_.rtol * r0, floor);
     res.floor = floor;
-    if (r <= std::max(opt_.rtol * r0, floor) && (it > 0 || r <= floor)) {
+    if (r <= target && (it > 0 || r <= floor)) {
       res.converged = true;
       return res;
     }
@@ -119,6 +132,10 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
                     it, r, r0, std::max(opt_.rtol * r0, floor));
       res.failure = buf;
       return res;
+    }
+    if (!with_matrix) {  // convergence was predicted but did not come: the matrix after all
+      assemble(true);
+      ++res.extra_assemblies;
     }
     {
       TimeMonitor tm(t_elim);
@@ -140,6 +157,10 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       hooks_->after_update(u0, u1);
     }
     ++res.iterations;
+    // the next iterate will most likely be the last (a tenth of the target predicted): its
+    // Newton matrix would go unused, so only the residual is assembled there
+    const double next = predicted_next(res.residuals);
+    with_matrix = !(opt_.skip_last_matrix && next >= 0 && next < 0.1 * target);
   }
 }
 

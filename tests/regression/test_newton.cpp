@@ -120,3 +120,50 @@ TEST(Newton, AdaptiveLinearToleranceKeepsTheIterates) {
     EXPECT_LT(runs[2 + pass].linear_iterations, runs[pass].linear_iterations);
   }
 }
+
+// The iterate predicted to converge is assembled without its Newton matrix (it would go
+// unused). That changes nothing: the same iterates bit for bit, with or without the skip,
+// including when the prediction fails and the matrix is assembled after all.
+TEST(Newton, SkippingTheLastMatrixChangesNothing) {
+  auto comm = Tpetra::getDefaultComm();
+  Teuchos::RCP<Teuchos::ParameterList> params;
+  const auto model = large_step_model(comm, &params);
+  const emc::fem::Discretization disc(model, comm);
+  auto linear = params->sublist("Solver").sublist("Linear");
+  linear.set("type", "gmres");
+  linear.set("tolerance", 1e-13);
+  const auto V0 = owned_initial_velocity(disc);
+  emc::Vector u0(disc.owned_map());
+  std::vector<emc::time::NewtonResult> runs;
+  std::vector<emc::Vector> solutions;
+  for (bool skip : {false, true}) {
+    emc::linalg::Elimination elim(disc.owned_map());
+    emc::linalg::LinearSolver solver(linear, comm);
+    emc::time::NewtonOptions opt;
+    opt.rtol = 1e-11;  // the last iterate, 1.1e-9 r_0, is predicted at 2e-10 r_0
+    opt.skip_last_matrix = skip;
+    emc::time::Newton newton(disc, elim, solver, opt);
+    emc::Vector u1(disc.owned_map());
+    for (int pass = 0; pass < 3; ++pass) {
+      u1.assign(u0);
+      if (pass == 2) newton.set_contraction(1e-30);
+      runs.push_back(newton.solve(u0, *V0, 0.05, u1));
+      ASSERT_TRUE(runs.back().converged) << runs.back().failure;
+      solutions.emplace_back(u1, Teuchos::Copy);
+    }
+  }
+  for (int pass = 0; pass < 3; ++pass) {
+    const auto& with = runs[3 + pass];
+    EXPECT_EQ(runs[pass].residuals, with.residuals);
+    emc::Vector diff(solutions[pass], Teuchos::Copy);
+    diff.update(-1.0, solutions[3 + pass], 1.0);
+    EXPECT_EQ(diff.normInf(), 0.0);
+    EXPECT_EQ(runs[pass].extra_assemblies, 0);  // never skipped
+    EXPECT_EQ(runs[pass].matrices, static_cast<int>(runs[pass].residuals.size()));
+    // with the skip, the last iterate had no matrix (each solve had one)
+    EXPECT_EQ(with.matrices, with.iterations);
+    std::printf("pass %d: %zu iterates, matrices assembled again after a wrong prediction: %d\n",
+                pass, with.residuals.size(), with.extra_assemblies);
+    EXPECT_EQ(with.extra_assemblies, pass == 2 ? 1 : 0);
+  }
+}

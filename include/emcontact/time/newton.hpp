@@ -19,6 +19,7 @@ struct NewtonOptions {
   double rtol = 1e-10, atol = 0;
   int max_iterations = 25;
   bool adaptive_linear_tolerance = true;  ///< see Newton::linear_tolerance
+  bool skip_last_matrix = true;  ///< no Newton matrix at an iterate predicted to converge
 };
 NewtonOptions newton_options(const Teuchos::ParameterList& newton);
 
@@ -28,6 +29,8 @@ struct NewtonResult {
   int linear_iterations = 0;  ///< Krylov iterations summed
   std::vector<double> residuals;  ///< ||P^T g|| per iterate
   double floor = 0;               ///< the round-off floor (or atol) at the last iterate
+  int matrices = 0;               ///< Newton matrices assembled
+  int extra_assemblies = 0;       ///< matrices assembled after a wrong prediction of convergence
   std::string failure;        ///< why it did not converge
 };
 
@@ -55,6 +58,8 @@ class Newton {
  private:
   NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1);
   double linear_tolerance(const std::vector<double>& r, double floor) const;
+  /// C r_k^2 with C = r_k / r_{k-1}^2 (or the last step's); < 0 when there is no estimate.
+  double predicted_next(const std::vector<double>& r) const;
 
   const fem::Discretization& disc_;
   linalg::Elimination& elim_;
