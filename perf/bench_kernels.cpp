@@ -150,6 +150,25 @@ static void BM_ContactQueriesOrdered(benchmark::State& state) {
 }
 BENCHMARK(BM_ContactQueriesOrdered)->Arg(224)->Unit(benchmark::kMillisecond);
 
+// The random-order queries through the batch query, which visits them in grid-cell order (its
+// radix sort included).
+static void BM_ContactQueriesBatch(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x, q;
+  bumpy_surface(n, facets, x, q);
+  emc::contact::FacetGrid grid(facets, x, 0.5 / n);
+  std::vector<emc::contact::Hit> hits;
+  long found = 0;
+  for (auto _ : state) {
+    grid.locate_all(q.data(), q.size() / 3, hits);
+    for (const auto& h : hits) found += h.facet >= 0;
+  }
+  benchmark::DoNotOptimize(found);
+  query_counters(state, facets.size(), q.size() / 3);
+}
+BENCHMARK(BM_ContactQueriesBatch)->Arg(224)->Unit(benchmark::kMillisecond);
+
 /// The elimination of one Newton iteration (ALGORITHM.md §3) on the box of BM_Assembly: the
 /// bottom face fixed (Dirichlet) and every top-face node a stick slave with a dummy beta on its
 /// own dofs, tied to the three nodes of a facet one layer below (weights 0.5, 0.3, 0.2:

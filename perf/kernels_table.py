@@ -11,7 +11,7 @@ rows = ['Measured %s on %s (%d CPUs at %s MHz; Kokkos Serial, one core per proce
         '`bash perf/run_benchmarks.sh`.' % (ctx['date'][:10], ctx.get('host_name', '?'), ctx['num_cpus'], ctx['mhz_per_cpu']),
         '', '| benchmark | time per iteration | rate per core | target |', '|---|---|---|---|']
 targets = {'BM_EmTet4': '-', 'BM_Assembly': '1M tets/s', 'BM_ContactSearch': '5M queries/s',
-           'BM_ContactQueries': '5M queries/s', 'BM_ContactQueriesOrdered': '5M queries/s'}
+           'BM_ContactQueries': '5M queries/s', 'BM_ContactQueriesOrdered': '5M queries/s', 'BM_ContactQueriesBatch': '5M queries/s'}
 for b in d['benchmarks']:
     name = b['name']
     if name.startswith('BM_Elimination'):  # per Newton iteration, no rate target
@@ -23,7 +23,8 @@ for b in d['benchmarks']:
     rate = b.get('tets_per_s') or b.get('queries_per_s')
     unit = 'tets/s' if 'tets_per_s' in b else 'queries/s'
     notes = {'BM_ContactSearch': 'grid rebuilt for every 100k random queries', 'BM_ContactQueries': 'random order',
-             'BM_ContactQueriesOrdered': 'queries in spatial order'}
+             'BM_ContactQueriesOrdered': 'queries in spatial order',
+             'BM_ContactQueriesBatch': 'random order, batch query in grid-cell order, sort included'}
     extra = ' (%d tets)' % b['tets'] if 'tets' in b else (
         ' (%d facets, %s)' % (b['facets'], notes.get(name.split('/')[0], '')) if 'facets' in b else '')
     rows.append('| %s%s | %.3g %s | %.3gM %s | %s |' % (name, extra, b['real_time'], b['time_unit'], rate / 1e6, unit,

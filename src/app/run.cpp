@@ -270,8 +270,10 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
       w.fields_frame(disc, state);
       if (checkpoint_every > 0 && state.step % checkpoint_every == 0) {
         Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: output"));
-        save_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5");
+        // monitors first: a kill between the two leaves rows beyond the checkpoint (ignored by
+        // --restart), never a checkpoint without its row (found by kill_and_restart)
         if (root) w.monitors->flush(true);
+        save_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5");
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
       }
       progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);
@@ -279,6 +281,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
       Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &stop, &any);
       if (any) {
         const std::string file = sum.output_dir + "/checkpoint.h5";
+        if (root) w.monitors->flush(true);
         save_checkpoint(*sim, *w.dofs, file);
         throw RunError("stopped by SIGTERM after step " + std::to_string(state.step) + " (t = " +
                        std::to_string(state.t) + "); continue with --restart " + file);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "kernels/facet.hpp"
 
@@ -140,6 +141,31 @@ Hit FacetGrid::locate(const double y[3], int current, double hyst) const {
   }
   least.inside = least_out <= hyst;
   return least;
+}
+
+}  // namespace emc::contact
+
+namespace emc::contact {
+
+void FacetGrid::locate_all(const double* y, std::size_t n, std::vector<Hit>& hits) const {
+  hits.assign(n, Hit{});
+  // keys: the cell index (< 128^3 = 2^21), points outside the grid last; two 11-bit passes
+  const std::uint32_t outside = static_cast<std::uint32_t>(num_cells());
+  std::vector<std::uint32_t> key(n), order(n), next(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    int d[3];
+    const int c = cell_of(&y[3 * k], d);
+    key[k] = c < 0 ? outside : static_cast<std::uint32_t>(c);
+    order[k] = static_cast<std::uint32_t>(k);
+  }
+  for (int shift = 0; shift < 22; shift += 11) {  // LSD radix sort, stable
+    std::vector<std::size_t> start(2049, 0);
+    for (std::size_t k = 0; k < n; ++k) ++start[((key[order[k]] >> shift) & 2047) + 1];
+    for (int b = 0; b < 2048; ++b) start[b + 1] += start[b];
+    for (std::size_t k = 0; k < n; ++k) next[start[(key[order[k]] >> shift) & 2047]++] = order[k];
+    order.swap(next);
+  }
+  for (std::uint32_t k : order) hits[k] = locate(&y[3 * k]);
 }
 
 }  // namespace emc::contact

@@ -118,6 +118,37 @@ TEST(FacetGrid, MatchesBruteForce) {
   EXPECT_GT(found, 3800);  // a few queries near the outer border project outside every facet
 }
 
+// The batch query (visited in grid-cell order) gives every point the same hit, bit for bit, as
+// its own locate(), including points outside the grid (no hit).
+TEST(FacetGrid, BatchInCellOrderMatchesSingleQueries) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(40, facets, x);
+  emc::contact::FacetGrid grid(facets, x, 0.05);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-0.2, 1.2), dz(-0.1, 0.1);
+  std::vector<double> y;
+  for (int t = 0; t < 5000; ++t) {
+    const double a = d(rng), b = d(rng);
+    y.insert(y.end(), {a, b, 0.1 * std::sin(3 * a) * std::cos(2 * b) + dz(rng)});
+  }
+  std::vector<emc::contact::Hit> hits;
+  grid.locate_all(y.data(), y.size() / 3, hits);
+  ASSERT_EQ(hits.size(), y.size() / 3);
+  int found = 0, outside = 0;
+  for (std::size_t k = 0; k < hits.size(); ++k) {
+    const auto one = grid.locate(&y[3 * k]);
+    ASSERT_EQ(hits[k].facet, one.facet) << "point " << k;
+    EXPECT_EQ(hits[k].gap, one.gap);
+    EXPECT_EQ(hits[k].xi[0], one.xi[0]);
+    EXPECT_EQ(hits[k].xi[1], one.xi[1]);
+    found += one.facet >= 0;
+    outside += y[3 * k] < -0.1 || y[3 * k] > 1.1;
+  }
+  EXPECT_GT(found, 1000);  // about a quarter lie within the margin over the surface
+  EXPECT_GT(outside, 100);  // some points lie outside the grid
+}
+
 // Hysteresis (§5 step 2): the current facet is kept while its CPP is inside up to hyst.
 TEST(FacetGrid, KeepsCurrentFacetWithinHysteresis) {
   std::vector<std::array<int, 3>> facets;
