@@ -149,13 +149,19 @@ namespace emc::contact {
 
 void FacetGrid::locate_all(const double* y, std::size_t n, std::vector<Hit>& hits) const {
   hits.assign(n, Hit{});
-  // keys: the cell index (< 128^3 = 2^21), points outside the grid last; two 11-bit passes
-  const std::uint32_t outside = static_cast<std::uint32_t>(num_cells());
+  // keys: the Morton code of the cell (at most 128 = 2^7 cells per direction: 21 bits),
+  // points outside the grid last; two 11-bit passes
+  auto spread = [](std::uint32_t v) {  // bit b of v to bit 3b
+    std::uint32_t r = 0;
+    for (int b = 0; b < 7; ++b) r |= ((v >> b) & 1u) << (3 * b);
+    return r;
+  };
+  const std::uint32_t outside = 1u << 21;
   std::vector<std::uint32_t> key(n), order(n), next(n);
   for (std::size_t k = 0; k < n; ++k) {
     int d[3];
     const int c = cell_of(&y[3 * k], d);
-    key[k] = c < 0 ? outside : static_cast<std::uint32_t>(c);
+    key[k] = c < 0 ? outside : spread(d[0]) | spread(d[1]) << 1 | spread(d[2]) << 2;
     order[k] = static_cast<std::uint32_t>(k);
   }
   for (int shift = 0; shift < 22; shift += 11) {  // LSD radix sort, stable

@@ -29,7 +29,7 @@ class FacetGrid {
   Hit locate(const double y[3], int current = -1, double hyst = 0) const;
 
   /// locate(y_k) for n points (3 coordinates each): hits[k] for point k, the same bits, but
-  /// visited in the order of their grid cells (a radix sort of the cell index), so that
+  /// visited in the Morton order of their grid cells (a radix sort), so that
   /// consecutive queries read the same cell lists and facet records, as tree searches sort
   /// their queries (ArborX). For many queries in no particular order.
   void locate_all(const double* y, std::size_t n, std::vector<Hit>& hits) const;
