@@ -24,7 +24,7 @@ for b in d['benchmarks']:
     unit = 'tets/s' if 'tets_per_s' in b else 'queries/s'
     notes = {'BM_ContactSearch': 'grid rebuilt for every 100k random queries', 'BM_ContactQueries': 'random order',
              'BM_ContactQueriesOrdered': 'queries in spatial order',
-             'BM_ContactQueriesBatch': 'random order, batch query in grid-cell order, sort included'}
+             'BM_ContactQueriesBatch': 'random order, batch query in the Morton order of the cells, sort included'}
     extra = ' (%d tets)' % b['tets'] if 'tets' in b else (
         ' (%d facets, %s)' % (b['facets'], notes.get(name.split('/')[0], '')) if 'facets' in b else '')
     rows.append('| %s%s | %.3g %s | %.3gM %s | %s |' % (name, extra, b['real_time'], b['time_unit'], rate / 1e6, unit,
