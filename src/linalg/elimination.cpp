@@ -90,15 +90,15 @@ void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std:
   X_->fillComplete(owned_, owned_);
 }
 
+// D (ALGORITHM.md §3-§4): 1 on fixed dofs, beta on the dummies. Called at every Newton
+// iteration under stick (beta follows A), so the matrix form, which only the triple-product
+// path adds, is built there when needed; the masked path takes the diagonal as a vector.
 void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag) {
-  D_ = rcp(new Matrix(owned_, 1));
   std::map<GO, double> diag;
   for (GO g : fixed_) diag[g] = 1.0;
   for (const auto& [g, v] : dummy_diag) diag[g] = v;
-  for (const auto& [g, v] : diag)
-    D_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
-                           Teuchos::ArrayView<const double>(&v, 1));
-  D_->fillComplete(owned_, owned_);
+  diag_.assign(diag.begin(), diag.end());
+  D_ = Teuchos::null;
   if (masked_) {
     auto d = rcp(new Vector(owned_));
     auto dv = d->getLocalViewHost(Tpetra::Access::ReadWrite);
@@ -107,6 +107,18 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
   }
 }
 
+const Matrix& Elimination::dummy_matrix() const {
+  if (D_.is_null()) {
+    D_ = rcp(new Matrix(owned_, 1));
+    for (const auto& [g, v] : diag_)
+      D_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
+                             Teuchos::ArrayView<const double>(&v, 1));
+    D_->fillComplete(owned_, owned_);
+  }
+  return *D_;
+}
+
+// ALGORITHM.md §3 (and §5: P^T A Pt + X + D with the exact right factor).
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
   if (masked_ && Pt_.is_null() && X_.is_null()) return masked_reduction_.apply(*A);
@@ -120,7 +132,7 @@ RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
     Tpetra::MatrixMatrix::Multiply(*PtA, false, *Pt_, false, *PtAP, true,
                                    "emcontact::linalg::PtAPt");
   }
-  auto out = Tpetra::MatrixMatrix::add(1.0, false, *PtAP, 1.0, false, *D_);
+  auto out = Tpetra::MatrixMatrix::add(1.0, false, *PtAP, 1.0, false, dummy_matrix());
   if (!X_.is_null()) out = Tpetra::MatrixMatrix::add(1.0, false, *out, 1.0, false, *X_);
   return out;
 }

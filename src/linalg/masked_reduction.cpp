@@ -22,6 +22,19 @@ void MaskedReduction::copy_graph(const Matrix& A) {
   ColInds cols("emc::masked::cols", lcl.entries.extent(0));
   Kokkos::deep_copy(rows, lcl.row_map);
   Kokkos::deep_copy(cols, lcl.entries);
+  // the position of each row's diagonal entry in the values, found once
+  diag_pos_ = Kokkos::View<long*, ExecSpace>("emc::masked::diag_pos", rows.extent(0) - 1);
+  const auto diag_pos = diag_pos_;
+  const auto col_map = g.getColMap()->getLocalMap();
+  const auto row_map = g.getRowMap()->getLocalMap();
+  Kokkos::parallel_for(
+      "emcontact::linalg::masked_diagonal", Kokkos::RangePolicy<ExecSpace>(0, diag_pos.extent(0)),
+      KOKKOS_LAMBDA(const int i) {
+        const LO diag_col = col_map.getLocalElement(row_map.getGlobalElement(i));
+        diag_pos(i) = -1;
+        for (auto j = rows(i); j < rows(i + 1); ++j)
+          if (cols(j) == diag_col) diag_pos(i) = static_cast<long>(j);
+      });
   auto copy = rcp(new Graph(g.getRowMap(), g.getColMap(), rows, cols));
   copy->expertStaticFillComplete(g.getDomainMap(), g.getRangeMap(), g.getImporter(),
                                  g.getExporter());
@@ -57,18 +70,14 @@ RCP<Matrix> MaskedReduction::apply(const Matrix& A) {
   const auto keep_col = keep_col_;
   const auto keep = keep_->getLocalViewDevice(Tpetra::Access::ReadOnly);
   const auto d = d_->getLocalViewDevice(Tpetra::Access::ReadOnly);
-  const auto row_gid_col = A.getColMap()->getLocalMap();
-  const auto row_map = A.getRowMap()->getLocalMap();
+  const auto diag_pos = diag_pos_;
   Kokkos::parallel_for(
       "emcontact::linalg::masked_ptap", Kokkos::RangePolicy<ExecSpace>(0, keep.extent(0)),
       KOKKOS_LAMBDA(const int i) {
-        const LO diag_col = row_gid_col.getLocalElement(row_map.getGlobalElement(i));
-        for (auto j = rows(i); j < rows(i + 1); ++j) {
-          // P's entries are 1 or absent: A_ij itself or nothing (no 0 * inf)
-          double v = keep(i, 0) != 0 && keep_col(cols(j)) != 0 ? vA(j) : 0.0;
-          if (cols(j) == diag_col) v += d(i, 0);
-          vals(j) = v;
-        }
+        // P's entries are 1 or absent: A_ij itself or nothing (no 0 * inf)
+        for (auto j = rows(i); j < rows(i + 1); ++j)
+          vals(j) = keep(i, 0) != 0 && keep_col(cols(j)) != 0 ? vA(j) : 0.0;
+        if (diag_pos(i) >= 0) vals(diag_pos(i)) += d(i, 0);
       });
   auto out = rcp(new Matrix(graph_, vals));
   out->fillComplete(A.getDomainMap(), A.getRangeMap());

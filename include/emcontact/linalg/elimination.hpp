@@ -71,7 +71,10 @@ class Elimination {
 
  private:
   Teuchos::RCP<const Map> owned_;
-  Teuchos::RCP<Matrix> P_, D_, Pt_, X_;
+  Teuchos::RCP<Matrix> P_, Pt_, X_;
+  mutable Teuchos::RCP<Matrix> D_;                 ///< built by dummy_matrix() when needed
+  std::vector<std::pair<GO, double>> diag_;        ///< D's entries (owned dofs)
+  const Matrix& dummy_matrix() const;
   std::vector<GO> fixed_;
   std::vector<PRow> rows_;
   Teuchos::RCP<Matrix> build_P(const std::vector<PRow>& rows) const;

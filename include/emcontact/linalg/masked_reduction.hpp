@@ -24,6 +24,7 @@ class MaskedReduction {
   Teuchos::RCP<const Graph> graph_;               ///< copy of A's graph, made once
   Teuchos::RCP<const Map> col_map_;               ///< A's column map it was made for
   Kokkos::View<double*, ExecSpace> keep_col_;    ///< keep on A's local columns
+  Kokkos::View<long*, ExecSpace> diag_pos_;      ///< per row, its diagonal entry (or -1)
   bool keep_col_stale_ = true;
   void copy_graph(const Matrix& A);
   void import_keep(const Matrix& A);
