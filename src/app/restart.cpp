@@ -55,24 +55,26 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   std::vector<char> msg(error.begin(), error.end());
   broadcast_vector(comm, msg);
   if (!msg.empty()) throw InputError(std::string(msg.begin(), msg.end()));
-  std::vector<double> scalars = {double(c.step), c.t, c.dt, c.last_h, double(c.good_steps),
-                                 double(c.last_iterations), double(c.last_increment.size()),
-                                 c.newton_contraction};
+  std::vector<double> scalars = c.scalars();
+  scalars.push_back(double(c.last_increment.size()));
   broadcast_vector(comm, scalars);
+  const bool has_increment = scalars.back() > 0;
+  scalars.pop_back();
+  c.set_scalars(scalars, path);
   broadcast_vector(comm, c.active);
   broadcast_vector(comm, c.normal_force);
   auto& s = sim.state;
-  s.step = static_cast<long>(scalars[0]);
-  s.t = scalars[1];
-  s.dt = scalars[2];
-  s.last_h = scalars[3];
-  s.good_steps = static_cast<int>(scalars[4]);
-  s.last_iterations = static_cast<int>(scalars[5]);
-  s.newton_contraction = scalars[7];
+  s.step = c.step;
+  s.t = c.t;
+  s.dt = c.dt;
+  s.last_h = c.last_h;
+  s.good_steps = c.good_steps;
+  s.last_iterations = c.last_iterations;
+  s.newton_contraction = c.newton_contraction;
   dofs.scatter(c.u, *s.u);
   dofs.scatter(c.V, *s.V);
   s.last_increment = Teuchos::null;
-  if (scalars[6] > 0) {
+  if (has_increment) {
     s.last_increment = Teuchos::rcp(new Vector(s.u->getMap()));
     dofs.scatter(c.last_increment, *s.last_increment);
   }

@@ -41,15 +41,28 @@ std::vector<double> read_vector(hid_t file, const char* name, const std::string&
 
 }  // namespace
 
+std::vector<double> Checkpoint::scalars() const {
+  return {double(step), t, dt, last_h, double(good_steps), double(last_iterations),
+          newton_contraction};
+}
+
+void Checkpoint::set_scalars(const std::vector<double>& s, const std::string& path) {
+  if (s.size() != 6 && s.size() != 7) throw Error(path + ": bad checkpoint scalars");
+  step = static_cast<long>(s[0]);
+  t = s[1];
+  dt = s[2];
+  last_h = s[3];
+  good_steps = static_cast<int>(s[4]);
+  last_iterations = static_cast<int>(s[5]);
+  newton_contraction = s.size() > 6 ? s[6] : 0.0;  // absent before the inexact Newton
+}
+
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
   const std::string tmp = path + ".tmp." + std::to_string(getpid());
   const hid_t file = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (file < 0) throw Error(path + ": cannot create the checkpoint file");
   try {
-    write_vector(file, "scalars",
-                 {double(c.step), c.t, c.dt, c.last_h, double(c.good_steps),
-                  double(c.last_iterations), c.newton_contraction},
-                 path);
+    write_vector(file, "scalars", c.scalars(), path);
     write_vector(file, "u", c.u, path);
     write_vector(file, "V", c.V, path);
     write_vector(file, "last_increment", c.last_increment, path);
@@ -70,15 +83,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (file < 0) throw Error(path + ": not an HDF5 file");
   Checkpoint c;
   try {
-    const auto s = read_vector(file, "scalars", path);
-    if (s.size() != 6 && s.size() != 7) throw Error(path + ": bad checkpoint scalars");
-    c.step = static_cast<long>(s[0]);
-    c.t = s[1];
-    c.dt = s[2];
-    c.last_h = s[3];
-    c.good_steps = static_cast<int>(s[4]);
-    c.last_iterations = static_cast<int>(s[5]);
-    c.newton_contraction = s.size() > 6 ? s[6] : 0.0;
+    c.set_scalars(read_vector(file, "scalars", path), path);
     c.u = read_vector(file, "u", path);
     c.V = read_vector(file, "V", path);
     c.last_increment = read_vector(file, "last_increment", path);

@@ -16,6 +16,11 @@ struct Checkpoint {
   std::vector<double> last_increment;  ///< 3 per node, or empty (no step taken yet)
   std::vector<double> active;          ///< 5 per active slave: slave, pair, facet, xi, eta
   std::vector<double> normal_force;    ///< f_N per active slave
+
+  /// The scalars as stored (step, t, dt, last_h, good_steps, last_iterations,
+  /// newton_contraction), and back (6 or 7 values; throws emc::Error naming `path` otherwise).
+  std::vector<double> scalars() const;
+  void set_scalars(const std::vector<double>& s, const std::string& path);
 };
 
 /// Writes `path` atomically (temporary name, then rename); throws emc::Error naming it.
