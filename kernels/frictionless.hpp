@@ -72,7 +72,6 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
   const double detG = G11 * G22 - G12 * G12;
   if (!(f.area2 > 0) || !(detG > 0)) return false;
   const double Gi[2][2] = {{G22 / detG, -G12 / detG}, {-G12 / detG, G11 / detG}};  // G^-1
-  const double* tau[2] = {f.t1, f.t2};
   const double* n = f.n;
   double N[3];
   facet_shape(xi, N);

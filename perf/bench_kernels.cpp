@@ -64,8 +64,14 @@ static void BM_Assembly(benchmark::State& state) {
 BENCHMARK(BM_Assembly)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 
 /// A bumpy surface of 2 n^2 facets (n = 224: about 100k) and 100k points near it.
-static void bumpy_surface(int n, std::vector<std::array<int, 3>>& facets, std::vector<double>& x,
-                          std::vector<double>& q) {
+struct BumpySurface {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x, q;
+  double margin;
+  explicit BumpySurface(int n);
+};
+
+BumpySurface::BumpySurface(int n) : margin(0.5 / n) {
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
       const double px = double(i) / n, py = double(j) / n;
@@ -100,14 +106,11 @@ static void query_counters(benchmark::State& state, std::size_t facets, std::siz
 }
 
 static void BM_ContactSearch(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  std::vector<std::array<int, 3>> facets;
-  std::vector<double> x, q;
-  bumpy_surface(n, facets, x, q);
-  const double h = 0.5 / n;
+  const BumpySurface s(static_cast<int>(state.range(0)));
+  const auto& [facets, x, q, margin] = s;
   long found = 0;
   for (auto _ : state) {
-    emc::contact::FacetGrid grid(facets, x, h);  // rebuilt every step in the solver
+    emc::contact::FacetGrid grid(facets, x, margin);  // rebuilt every step in the solver
     found += locate_all(grid, q);
   }
   benchmark::DoNotOptimize(found);
@@ -117,11 +120,9 @@ BENCHMARK(BM_ContactSearch)->Arg(224)->Unit(benchmark::kMillisecond);
 
 // The queries alone, against a grid built once.
 static void BM_ContactQueries(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  std::vector<std::array<int, 3>> facets;
-  std::vector<double> x, q;
-  bumpy_surface(n, facets, x, q);
-  emc::contact::FacetGrid grid(facets, x, 0.5 / n);
+  const BumpySurface s(static_cast<int>(state.range(0)));
+  const auto& [facets, x, q, margin] = s;
+  emc::contact::FacetGrid grid(facets, x, margin);
   long found = 0;
   for (auto _ : state) found += locate_all(grid, q);
   benchmark::DoNotOptimize(found);
@@ -132,17 +133,15 @@ BENCHMARK(BM_ContactQueries)->Arg(224)->Unit(benchmark::kMillisecond);
 // The same queries in spatial order (rows of 1/64 in y, then x), as slave nodes numbered
 // along the surface come: the facets a query needs are then in cache.
 static void BM_ContactQueriesOrdered(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  std::vector<std::array<int, 3>> facets;
-  std::vector<double> x, q;
-  bumpy_surface(n, facets, x, q);
+  const BumpySurface s(static_cast<int>(state.range(0)));
+  const auto& [facets, x, q, margin] = s;
   std::vector<int> order(q.size() / 3);
   for (std::size_t t = 0; t < order.size(); ++t) order[t] = static_cast<int>(t);
   auto key = [&](int t) { return std::make_pair(int(q[3 * t + 1] * 64), q[3 * t]); };
   std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
   std::vector<double> sorted;
   for (int t : order) sorted.insert(sorted.end(), {q[3 * t], q[3 * t + 1], q[3 * t + 2]});
-  emc::contact::FacetGrid grid(facets, x, 0.5 / n);
+  emc::contact::FacetGrid grid(facets, x, margin);
   long found = 0;
   for (auto _ : state) found += locate_all(grid, sorted);
   benchmark::DoNotOptimize(found);
@@ -153,11 +152,9 @@ BENCHMARK(BM_ContactQueriesOrdered)->Arg(224)->Unit(benchmark::kMillisecond);
 // The random-order queries through the batch query, which visits them in grid-cell order (its
 // radix sort included).
 static void BM_ContactQueriesBatch(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  std::vector<std::array<int, 3>> facets;
-  std::vector<double> x, q;
-  bumpy_surface(n, facets, x, q);
-  emc::contact::FacetGrid grid(facets, x, 0.5 / n);
+  const BumpySurface s(static_cast<int>(state.range(0)));
+  const auto& [facets, x, q, margin] = s;
+  emc::contact::FacetGrid grid(facets, x, margin);
   std::vector<emc::contact::Hit> hits;
   long found = 0;
   for (auto _ : state) {

@@ -326,7 +326,7 @@ void Contact::gap_range(const std::vector<double>& x1, const std::vector<Active>
   for (const auto& a : active) {
     double xm[3][3], xi[2], gap;
     facet_coords(a, x1, xm);
-    kernels::facet_cpp(&x1[3 * a.slave], xm, xi, gap);
+    if (!kernels::facet_cpp(&x1[3 * a.slave], xm, xi, gap)) continue;  // degenerate facet
     l = std::min(l, gap);
     h = std::max(h, gap);
   }

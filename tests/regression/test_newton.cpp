@@ -75,45 +75,48 @@ TEST(Newton, QuadraticOnLargeDeformationStep) {
   EXPECT_GT(u1.normInf(), 0.1);
 }
 
-/// Solves the large step `passes` times from u = 0 with one Newton (GMRES + ILU to 1e-13,
-/// options `opt`), appending each result and solution; before the last pass, when
-/// `wrong_last`, its contraction estimate is set far too small.
-void solve_passes(const emc::fem::Discretization& disc, const Teuchos::ParameterList& params,
-                  const emc::time::NewtonOptions& opt, int passes, bool wrong_last,
-                  std::vector<emc::time::NewtonResult>& runs, std::vector<emc::Vector>& solutions) {
-  auto linear = params.sublist("Solver").sublist("Linear");
-  linear.set("type", "gmres");
-  linear.set("tolerance", 1e-13);
-  const auto V0 = owned_initial_velocity(disc);
-  emc::Vector u0(disc.owned_map()), u1(disc.owned_map());
-  emc::linalg::Elimination elim(disc.owned_map());
-  emc::linalg::LinearSolver solver(linear, disc.comm());
-  emc::time::Newton newton(disc, elim, solver, opt);
-  for (int pass = 0; pass < passes; ++pass) {
-    u1.assign(u0);
-    if (wrong_last && pass == passes - 1) newton.set_contraction(1e-30);
-    runs.push_back(newton.solve(u0, *V0, 0.05, u1));
-    ASSERT_TRUE(runs.back().converged) << runs.back().failure;
-    solutions.emplace_back(u1, Teuchos::Copy);
+/// The large step solved several times, with the results and solutions of every pass.
+class NewtonPasses : public ::testing::Test {
+ protected:
+  Teuchos::RCP<const emc::Comm> comm = Tpetra::getDefaultComm();
+  Teuchos::RCP<Teuchos::ParameterList> params;
+  emc::fem::Model model = large_step_model(comm, &params);
+  emc::fem::Discretization disc{model, comm};
+  std::vector<emc::time::NewtonResult> runs;
+  std::vector<emc::Vector> solutions;
+
+  /// Solves the step `passes` times from u = 0 with one Newton (GMRES + ILU to 1e-13,
+  /// options `opt`); before the last pass, when `wrong_last`, its contraction estimate is set
+  /// far too small.
+  void solve_passes(const emc::time::NewtonOptions& opt, int passes, bool wrong_last) {
+    auto linear = params->sublist("Solver").sublist("Linear");
+    linear.set("type", "gmres");
+    linear.set("tolerance", 1e-13);
+    const auto V0 = owned_initial_velocity(disc);
+    emc::Vector u0(disc.owned_map()), u1(disc.owned_map());
+    emc::linalg::Elimination elim(disc.owned_map());
+    emc::linalg::LinearSolver solver(linear, comm);
+    emc::time::Newton newton(disc, elim, solver, opt);
+    for (int pass = 0; pass < passes; ++pass) {
+      u1.assign(u0);
+      if (wrong_last && pass == passes - 1) newton.set_contraction(1e-30);
+      runs.push_back(newton.solve(u0, *V0, 0.05, u1));
+      ASSERT_TRUE(runs.back().converged) << runs.back().failure;
+      solutions.emplace_back(u1, Teuchos::Copy);
+    }
   }
-}
+};
 
 // Inexact Newton (Newton::linear_tolerance): solving each linear system only to what the
 // quadratic Newton step needs leaves the iterates those of solves to the full tolerance (the
 // linear error is kept below 1% of the next residual), with fewer Krylov iterations. The
 // same step is solved twice so that the second solve also adapts its first tolerance.
-TEST(Newton, AdaptiveLinearToleranceKeepsTheIterates) {
-  auto comm = Tpetra::getDefaultComm();
-  Teuchos::RCP<Teuchos::ParameterList> params;
-  const auto model = large_step_model(comm, &params);
-  const emc::fem::Discretization disc(model, comm);
-  std::vector<emc::time::NewtonResult> runs;
-  std::vector<emc::Vector> solutions;
+TEST_F(NewtonPasses, AdaptiveLinearToleranceKeepsTheIterates) {
   for (bool adaptive : {false, true}) {
     emc::time::NewtonOptions opt;
     opt.rtol = 1e-12;
     opt.adaptive_linear_tolerance = adaptive;
-    solve_passes(disc, *params, opt, 2, false, runs, solutions);
+    solve_passes(opt, 2, false);
   }
   ASSERT_EQ(runs.size(), 4u);
   for (int pass = 0; pass < 2; ++pass) {
@@ -137,18 +140,12 @@ TEST(Newton, AdaptiveLinearToleranceKeepsTheIterates) {
 // unused). That changes nothing: the same iterates bit for bit, with or without the skip,
 // including when the prediction fails and the matrix is assembled after all (third pass: a
 // contraction estimate far too small predicts convergence after the first solve).
-TEST(Newton, SkippingTheLastMatrixChangesNothing) {
-  auto comm = Tpetra::getDefaultComm();
-  Teuchos::RCP<Teuchos::ParameterList> params;
-  const auto model = large_step_model(comm, &params);
-  const emc::fem::Discretization disc(model, comm);
-  std::vector<emc::time::NewtonResult> runs;
-  std::vector<emc::Vector> solutions;
+TEST_F(NewtonPasses, SkippingTheLastMatrixChangesNothing) {
   for (bool skip : {false, true}) {
     emc::time::NewtonOptions opt;
     opt.rtol = 1e-11;  // the last iterate, 1.1e-9 r_0, is predicted at 2e-10 r_0
     opt.skip_last_matrix = skip;
-    solve_passes(disc, *params, opt, 3, true, runs, solutions);
+    solve_passes(opt, 3, true);
   }
   ASSERT_EQ(runs.size(), 6u);
   for (int pass = 0; pass < 3; ++pass) {
