@@ -147,6 +147,7 @@ Hit FacetGrid::locate(const double y[3], int current, double hyst) const {
 
 namespace emc::contact {
 
+// ALGORITHM.md §2 for each point (locate), in an order that reuses the cache.
 void FacetGrid::locate_all(const double* y, std::size_t n, std::vector<Hit>& hits) const {
   hits.assign(n, Hit{});
   // keys: the Morton code of the cell (at most 128 = 2^7 cells per direction: 21 bits),
