@@ -1,9 +1,6 @@
 #include "emcontact/linalg/elimination.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-#include <TpetraExt_MatrixMatrix.hpp>
-#include <TpetraExt_TripleMatrixMultiply.hpp>
-
 #include <algorithm>
 #include <map>
 
@@ -12,7 +9,9 @@ namespace emc::linalg {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
-Elimination::Elimination(RCP<const Map> owned) : owned_(owned) { set_constraints({}, {}, {}); }
+Elimination::Elimination(RCP<const Map> owned) : owned_(owned) {
+  set_constraints({}, {}, {});
+}
 
 // ALGORITHM.md §3: P is the identity except in constrained rows (fixed: empty rows).
 RCP<Matrix> Elimination::build_P(const std::vector<PRow>& rows) const {
@@ -60,45 +59,25 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
     for (const auto& r : rows_) k(owned_->getLocalElement(r.row), 0) = 0.0;
     masked_reduction_.set_keep(keep);
   }
-  Pt_ = Teuchos::null;
-  X_ = Teuchos::null;
+  pt_rows_.clear();
+  X_.clear();
+  linearised_ = false;
   set_dummy_values(dummy_diag);
 }
 
 void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X) {
-  int local = pt_rows.empty() ? 0 : 1, any = 0;  // collective decision: fillComplete follows
-  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 1, &local, &any);
-  if (!any) {
-    Pt_ = Teuchos::null;
-  } else {  // Pt: P with the given rows replaced
-    std::map<GO, PRow> merged;
-    for (const auto& r : rows_) merged[r.row] = r;
-    for (const auto& r : pt_rows) merged[r.row] = r;
-    std::vector<PRow> all;
-    for (auto& [g, r] : merged) all.push_back(std::move(r));
-    Pt_ = build_P(all);
-  }
-  std::vector<std::size_t> count(owned_->getNodeNumElements(), 0);
-  for (const auto& e : X) {
-    const LO l = owned_->getLocalElement(e.row);
-    if (l != Teuchos::OrdinalTraits<LO>::invalid()) ++count[l];
-  }
-  X_ = rcp(new Matrix(owned_, Teuchos::ArrayView<const std::size_t>(count)));
-  for (const auto& e : X)  // rows owned elsewhere are sent there by fillComplete
-    X_->insertGlobalValues(e.row, Teuchos::ArrayView<const GO>(&e.col, 1),
-                           Teuchos::ArrayView<const double>(&e.value, 1));
-  X_->fillComplete(owned_, owned_);
+  pt_rows_ = pt_rows;
+  X_ = X;
+  linearised_ = true;
 }
 
 // D (ALGORITHM.md §3-§4): 1 on fixed dofs, beta on the dummies. Called at every Newton
-// iteration under stick (beta follows A), so the matrix form, which only the triple-product
-// path adds, is built there when needed; the masked path takes the diagonal as a vector.
+// iteration under stick (beta follows A); the masked path takes the diagonal as a vector.
 void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag) {
   std::map<GO, double> diag;
   for (GO g : fixed_) diag[g] = 1.0;
   for (const auto& [g, v] : dummy_diag) diag[g] = v;
   diag_.assign(diag.begin(), diag.end());
-  D_ = Teuchos::null;
   if (masked_) {
     auto d = rcp(new Vector(owned_));
     auto dv = d->getLocalViewHost(Tpetra::Access::ReadWrite);
@@ -107,34 +86,12 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
   }
 }
 
-const Matrix& Elimination::dummy_matrix() const {
-  if (D_.is_null()) {
-    D_ = rcp(new Matrix(owned_, 1));
-    for (const auto& [g, v] : diag_)
-      D_->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
-                             Teuchos::ArrayView<const double>(&v, 1));
-    D_->fillComplete(owned_, owned_);
-  }
-  return *D_;
-}
-
 // ALGORITHM.md §3 (and §5: P^T A Pt + X + D with the exact right factor).
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
-  if (masked_ && Pt_.is_null() && X_.is_null()) return masked_reduction_.apply(*A);
-  RCP<Matrix> PtAP = rcp(new Matrix(owned_, 0));
-  if (Pt_.is_null()) {
-    Tpetra::TripleMatrixMultiply::MultiplyRAP(*P_, true, *A, false, *P_, false, *PtAP, true,
-                                              "emcontact::linalg::PtAP");
-  } else {  // P^T A Pt as two products (the triple product requires R = P^T of the same P)
-    RCP<Matrix> PtA = rcp(new Matrix(owned_, 0));
-    Tpetra::MatrixMatrix::Multiply(*P_, true, *A, false, *PtA, true, "emcontact::linalg::PtA");
-    Tpetra::MatrixMatrix::Multiply(*PtA, false, *Pt_, false, *PtAP, true,
-                                   "emcontact::linalg::PtAPt");
-  }
-  auto out = Tpetra::MatrixMatrix::add(1.0, false, *PtAP, 1.0, false, dummy_matrix());
-  if (!X_.is_null()) out = Tpetra::MatrixMatrix::add(1.0, false, *out, 1.0, false, *X_);
-  return out;
+  if (masked_ && !linearised_) return masked_reduction_.apply(*A);
+  structured_reduction_.set(fixed_, rows_, pt_rows_, X_, diag_, *owned_->getComm());
+  return structured_reduction_.apply(*A);
 }
 
 void Elimination::reduce_residual(const Vector& g, Vector& R) const {

@@ -80,7 +80,7 @@ SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x,
   const double decades = std::max(1.0, -std::log10(tol));
   std::string message;
   if (type_ == "klu2") {
-    solve_klu2(A, b, x);
+    klu2_.solve(A, b, x);
     message = "Amesos2 KLU2 direct solve";
   } else {
     if (prec_.is_null() || !reuse_) {

@@ -4,26 +4,13 @@
 // dof has a zero column in P and a dummy row 1 * dq = 0 (D = 1 there); later, contact slaves
 // add rows of P that tie them to their master facet, with D = beta on their dummies.
 #include <Teuchos_RCP.hpp>
-
 #include <vector>
 
 #include "emcontact/linalg/masked_reduction.hpp"
+#include "emcontact/linalg/structured_reduction.hpp"
 #include "emcontact/types.hpp"
 
 namespace emc::linalg {
-
-/// One row block of P: owned dof `row` gets du_row = sum_k weight_k dq_{col_k}.
-struct PRow {
-  GO row;
-  std::vector<GO> cols;
-  std::vector<double> weights;
-};
-
-/// One entry of the variation X of P^T (ALGORITHM.md §5); its row may be owned elsewhere.
-struct Entry {
-  GO row, col;
-  double value;
-};
 
 /// What constraints do inside Newton (implemented by contact): set the iterate-dependent
 /// parts of the elimination before the reduction, and restore the nonlinear constraints after
@@ -61,8 +48,11 @@ class Elimination {
   /// True when P is the identity on every rank (nothing constrained): reduce/expand copy.
   bool identity() const { return identity_; }
   Teuchos::RCP<const Matrix> P() const { return P_; }
+  /// Times the structured path (P^T A Pt + X + D) built its pattern: once per active set.
+  int pattern_builds() const { return structured_reduction_.builds(); }
 
-  /// P^T A Pt + X + D (Pt = P and X = 0 unless set_linearisation was called).
+  /// P^T A Pt + X + D (Pt = P and X = 0 unless set_linearisation was called). Off the masked
+  /// path, the returned matrix is refilled by the next call while the pattern holds.
   Teuchos::RCP<Matrix> reduce_matrix(const Teuchos::RCP<Matrix>& A) const;
   /// R = P^T g.
   void reduce_residual(const Vector& g, Vector& R) const;
@@ -71,16 +61,17 @@ class Elimination {
 
  private:
   Teuchos::RCP<const Map> owned_;
-  Teuchos::RCP<Matrix> P_, Pt_, X_;
-  mutable Teuchos::RCP<Matrix> D_;                 ///< built by dummy_matrix() when needed
-  std::vector<std::pair<GO, double>> diag_;        ///< D's entries (owned dofs)
-  const Matrix& dummy_matrix() const;
+  Teuchos::RCP<Matrix> P_;
+  std::vector<std::pair<GO, double>> diag_;  ///< D's entries (owned dofs)
   std::vector<GO> fixed_;
-  std::vector<PRow> rows_;
+  std::vector<PRow> rows_, pt_rows_;  ///< P's special rows; Pt's that differ
+  std::vector<Entry> X_;
+  bool linearised_ = false;  ///< set_linearisation was called (on some rank)
   Teuchos::RCP<Matrix> build_P(const std::vector<PRow>& rows) const;
   bool identity_ = true;
   bool masked_ = false;  ///< P is diagonal (0/1) on every rank: MaskedReduction, no products
   mutable MaskedReduction masked_reduction_;
+  mutable StructuredReduction structured_reduction_;
 };
 
 }  // namespace emc::linalg

@@ -5,7 +5,7 @@
 // iteration count stays near the count of a fresh one. After every solve the true residual
 // is checked; a failure throws LinearSolveError with the solver's own message.
 #include <Teuchos_ParameterList.hpp>
-
+#include <memory>
 #include <string>
 
 #include "emcontact/error.hpp"
@@ -29,8 +29,19 @@ Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<
                                     const Teuchos::ParameterList& user);
 Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A,
                                   const Teuchos::ParameterList& user);
-/// x = A^-1 b with Amesos2 KLU2 (one rank only).
-void solve_klu2(const Teuchos::RCP<const Matrix>& A, const Vector& b, Vector& x);
+/// x = A^-1 b with Amesos2 KLU2 (one rank only), keeping the symbolic factorisation while
+/// the matrix's graph is the same object.
+class DirectKlu2 {
+ public:
+  DirectKlu2();
+  void solve(const Teuchos::RCP<const Matrix>& A, const Vector& b, Vector& x);
+  int symbolic_factorisations() const { return symbolic_; }
+
+ private:
+  struct State;
+  std::shared_ptr<State> s_;
+  int symbolic_ = 0;
+};
 
 class LinearSolver {
  public:
@@ -54,6 +65,7 @@ class LinearSolver {
   bool reuse_;
   Teuchos::ParameterList belos_, ifpack2_, muelu_;
   Teuchos::RCP<Operator> prec_;
+  DirectKlu2 klu2_;
   double fresh_rate_ = 0;  ///< Krylov iterations per decade of a fresh preconditioner
 
   int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,

@@ -266,3 +266,109 @@ TEST(Elimination, MaskedPathIsExact) {
     EXPECT_EQ(all, 0) << "pass " << pass;
   }
 }
+
+namespace {
+
+/// The dense P^T A Pt + X + D for slave rows (P and Pt), fixed dofs (D = 1) and dummies (D = beta).
+std::vector<std::vector<double>> dense_reduced(const std::vector<std::vector<double>>& Ad,
+                                               const std::vector<GO>& fixed,
+                                               const std::vector<linalg::PRow>& p_rows,
+                                               const std::vector<linalg::PRow>& pt_rows,
+                                               const std::vector<linalg::Entry>& X, double beta) {
+  std::vector<std::vector<double>> P(kN, std::vector<double>(kN, 0.0)), R(kN, std::vector<double>(kN, 0.0));
+  for (int i = 0; i < kN; ++i) P[i][i] = 1;
+  for (GO g : fixed) P[g][g] = 0;
+  for (const auto& r : p_rows) {
+    P[r.row][r.row] = 0;
+    for (std::size_t k = 0; k < r.cols.size(); ++k) P[r.row][r.cols[k]] += r.weights[k];
+  }
+  auto Pt = P;
+  for (const auto& r : pt_rows) {
+    std::fill(Pt[r.row].begin(), Pt[r.row].end(), 0.0);
+    for (std::size_t k = 0; k < r.cols.size(); ++k) Pt[r.row][r.cols[k]] += r.weights[k];
+  }
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j)
+      for (int a = 0; a < kN; ++a)
+        for (int b = 0; b < kN; ++b) R[i][j] += P[a][i] * Ad[a][b] * Pt[b][j];
+  for (GO g : fixed) R[g][g] += 1;
+  for (const auto& r : p_rows) R[r.row][r.row] += beta;
+  for (const auto& e : X) R[e.row][e.col] += e.value;
+  return R;
+}
+
+}  // namespace
+
+// The structured path finds its pattern once per set of constrained rows and columns: new
+// weights and new values of A and X on the same pattern refill the same matrix and still equal
+// the dense reference; a slave that moves to another facet (new columns) rebuilds the pattern.
+// Rows of P, Pt and X reach dofs owned by the other rank at np2.
+TEST(Elimination, StructuredPathReusesItsPattern) {
+  auto comm = Tpetra::getDefaultComm();
+  auto map = Teuchos::rcp(new Map(kN, 0, comm));
+  auto Ad = dense_matrix();
+  const std::vector<GO> fixed_all = {0, 1, 2};
+  const double beta = 4.2;
+  linalg::Elimination elim(map);
+  const int masters[3][3] = {{1, 2, 4}, {1, 2, 4}, {3, 2, 1}};  // pass 2: another facet
+  int builds = 0;
+  for (int pass = 0; pass < 3; ++pass) {
+    if (pass > 0)
+      for (auto& row : Ad)
+        for (double& v : row)
+          if (v != 0) v *= 1.0 + 0.1 * pass;
+    const auto A = distributed(Ad, map);
+    std::vector<linalg::PRow> p_all, pt_all;
+    for (int c = 0; c < 3; ++c) {  // slave node 5 on the facet, tangent dofs 15, 16 kept
+      linalg::PRow p{15 + c, {}, {}}, pt{15 + c, {}, {}};
+      for (int k = 0; k < 3; ++k) {
+        p.cols.push_back(3 * masters[pass][k] + c);
+        p.weights.push_back(0.2 + 0.1 * k + 0.01 * pass);
+        pt.cols.push_back(3 * masters[pass][k] + (c + 1) % 3);
+        pt.weights.push_back(-0.3 + 0.2 * k - 0.02 * pass);
+      }
+      for (int q = 0; q < 2; ++q) {
+        p.cols.push_back(15 + q);
+        p.weights.push_back(0.5 + q + pass);
+        pt.cols.push_back(15 + q);
+        pt.weights.push_back(0.7 - q);
+      }
+      p_all.push_back(p);
+      pt_all.push_back(pt);
+    }
+    const std::vector<linalg::Entry> X_all = {
+        {15, 3 * masters[pass][0], 0.5 + pass}, {3 * masters[pass][1], 16, -0.7}, {12, 12, 0.1 * pass}};
+    std::vector<GO> fixed;
+    std::vector<linalg::PRow> p, pt;
+    std::vector<std::pair<GO, double>> dummies;
+    for (GO g : fixed_all)
+      if (map->isNodeGlobalElement(g)) fixed.push_back(g);
+    for (int c = 0; c < 3; ++c)
+      if (map->isNodeGlobalElement(15 + c)) {
+        p.push_back(p_all[c]);
+        pt.push_back(pt_all[c]);
+        dummies.emplace_back(15 + c, beta);
+      }
+    std::vector<linalg::Entry> X;
+    if (comm->getRank() == comm->getSize() - 1) X = X_all;  // the last rank adds them all
+    elim.set_constraints(fixed, p, dummies);
+    elim.set_linearisation(pt, X);
+    const auto Ar = elim.reduce_matrix(A);
+    const auto R = dense_reduced(Ad, fixed_all, p_all, pt_all, X_all, beta);
+    double err = 0, norm = 0;
+    for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+      const GO i = map->getGlobalElement(l);
+      const auto row = dense_row(*Ar, i);
+      for (int j = 0; j < kN; ++j) {
+        err = std::max(err, std::fabs(row[j] - R[i][j]));
+        norm = std::max(norm, std::fabs(R[i][j]));
+      }
+    }
+    double gerr = 0, gnorm = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &gerr);
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &norm, &gnorm);
+    EXPECT_LT(gerr, 1e-14 * gnorm) << "pass " << pass;
+    builds += pass != 1;  // pass 1: the pattern of pass 0, new weights and values
+    EXPECT_EQ(elim.pattern_builds(), builds) << "pass " << pass;
+  }
+}

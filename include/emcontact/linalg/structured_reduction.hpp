@@ -1,0 +1,75 @@
+#pragma once
+// P^T A Pt + X + D when P and Pt are the identity outside a few rows (ALGORITHM.md §3, §5:
+// the active slaves' rows, fixed dofs' empty rows). Every entry A_ij contributes
+// P_ki A_ij Pt_jl to (k, l) for the entries of P's row i and Pt's row j; a plain row is the
+// single entry (i, 1). Which (A entry, weight, weight) lands on which position of the reduced
+// matrix is worked out once per pattern (A's graph, the constrained rows' columns, X's
+// entries); while the pattern holds (Newton iterations of one active set), each reduction is
+// one pass over those contributions into an FECrsMatrix on a graph built once, whose rows
+// owned elsewhere (a master dof of another rank) are exported like assembled ones.
+#include <Teuchos_RCP.hpp>
+#include <vector>
+
+#include "emcontact/types.hpp"
+
+namespace emc::linalg {
+
+/// One row block of P: owned dof `row` gets du_row = sum_k weight_k dq_{col_k}.
+struct PRow {
+  GO row;
+  std::vector<GO> cols;
+  std::vector<double> weights;
+};
+
+/// One entry of the variation X of P^T (ALGORITHM.md §5); its row may be owned elsewhere.
+struct Entry {
+  GO row, col;
+  double value;
+};
+
+class StructuredReduction {
+ public:
+  /// The constraints of one iterate. `fixed`: owned dofs whose row of P (and Pt) is empty;
+  /// `p_rows`, `pt_rows`: owned special rows of P and Pt (the same set of rows); `X`: entries
+  /// anywhere; `diag`: D on owned dofs. Collective (Pt's rows are gathered on every rank).
+  void set(const std::vector<GO>& fixed, const std::vector<PRow>& p_rows,
+           const std::vector<PRow>& pt_rows, const std::vector<Entry>& X,
+           const std::vector<std::pair<GO, double>>& diag, const Comm& comm);
+  /// P^T A Pt + X + D (collective). The same matrix object is refilled while the pattern
+  /// holds, so it is valid until the next call.
+  Teuchos::RCP<Matrix> apply(const Matrix& A);
+  /// Times the pattern was (re)built, for tests.
+  int builds() const { return builds_; }
+
+ private:
+  struct Key {  // what the pattern depends on
+    const void* col_map = nullptr;
+    std::size_t nnz = 0;
+    std::vector<GO> fixed, p, pt, x, d;  // rows and their columns, flattened
+    bool operator==(const Key& o) const {
+      return col_map == o.col_map && nnz == o.nnz && fixed == o.fixed && p == o.p && pt == o.pt &&
+             x == o.x && d == o.d;
+    }
+  };
+  /// A row of P or Pt as a range of the flat arrays; weight index 0 holds 1 (a plain row).
+  struct Span {
+    int begin = 0, end = 0;
+  };
+  Key key_, built_for_;
+  const Comm* comm_ = nullptr;
+  std::vector<GO> fixed_;
+  std::vector<GO> p_row_ids_, pt_row_ids_;
+  std::vector<GO> p_cols_, pt_cols_;             ///< flat columns (index 0 unused)
+  std::vector<Span> p_spans_, pt_spans_;         ///< per special row, in id order
+  Kokkos::View<double*, ExecSpace> p_w_, pt_w_;  ///< flat weights, [0] = 1
+  Kokkos::View<double*, ExecSpace> x_v_, d_v_;   ///< X's and D's values, in the given order
+  std::vector<GO> x_rows_, x_cols_, d_rows_;
+  // the contributions, found once per pattern: value += p_w(ip) * A(ea) * pt_w(it)
+  Kokkos::View<int*, ExecSpace> c_a_, c_ip_, c_it_, c_pos_;
+  Kokkos::View<int*, ExecSpace> x_pos_, d_pos_;
+  Teuchos::RCP<FEMatrix> B_;
+  int builds_ = 0;
+  void build(const Matrix& A);
+};
+
+}  // namespace emc::linalg

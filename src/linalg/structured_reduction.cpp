@@ -1,0 +1,294 @@
+#include "emcontact/linalg/structured_reduction.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <algorithm>
+#include <map>
+
+#include "emcontact/error.hpp"
+#include "emcontact/parallel.hpp"
+
+namespace emc::linalg {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+
+namespace {
+
+template <class T>
+Kokkos::View<T*, ExecSpace> to_view(const char* label, const std::vector<T>& v) {
+  Kokkos::View<T*, ExecSpace> out(Kokkos::ViewAllocateWithoutInitializing(label), v.size());
+  auto h = Kokkos::create_mirror_view(out);
+  for (std::size_t k = 0; k < v.size(); ++k) h(k) = v[k];
+  Kokkos::deep_copy(out, h);
+  return out;
+}
+
+/// Rows sorted by id, flattened: ids, spans into cols/weights (index 0: the weight 1 of a plain
+/// row), and the key (row, count, columns...).
+void flatten(std::vector<const PRow*> rows, std::vector<GO>& ids, std::vector<GO>& cols,
+             std::vector<double>& w, std::vector<GO>& key) {
+  std::sort(rows.begin(), rows.end(), [](const PRow* a, const PRow* b) { return a->row < b->row; });
+  ids.clear();
+  cols.assign(1, -1);
+  w.assign(1, 1.0);
+  key.clear();
+  for (const PRow* r : rows) {
+    ids.push_back(r->row);
+    key.push_back(r->row);
+    key.push_back(static_cast<GO>(r->cols.size()));
+    for (std::size_t k = 0; k < r->cols.size(); ++k) {
+      cols.push_back(r->cols[k]);
+      w.push_back(r->weights[k]);
+      key.push_back(r->cols[k]);
+    }
+  }
+}
+
+std::vector<int> spans_from_key(const std::vector<GO>& key) {  // begin of each row, then end
+  std::vector<int> begin;
+  int next = 1;
+  for (std::size_t k = 0; k < key.size(); k += 2 + key[k + 1]) {
+    begin.push_back(next);
+    next += static_cast<int>(key[k + 1]);
+  }
+  begin.push_back(next);
+  return begin;
+}
+
+}  // namespace
+
+void StructuredReduction::set(const std::vector<GO>& fixed, const std::vector<PRow>& p_rows,
+                              const std::vector<PRow>& pt_rows, const std::vector<Entry>& X,
+                              const std::vector<std::pair<GO, double>>& diag, const Comm& comm) {
+  comm_ = &comm;
+  fixed_ = fixed;
+  key_.fixed = fixed;
+  std::vector<double> pw, ptw;
+  {  // P: my rows
+    std::vector<const PRow*> mine;
+    for (const auto& r : p_rows) mine.push_back(&r);
+    flatten(mine, p_row_ids_, p_cols_, pw, key_.p);
+    const auto b = spans_from_key(key_.p);
+    p_spans_.resize(p_row_ids_.size());
+    for (std::size_t k = 0; k < p_spans_.size(); ++k) p_spans_[k] = {b[k], b[k + 1]};
+  }
+  {  // Pt: P with the given rows replaced, every rank's (A's columns may be anywhere)
+    std::map<GO, const PRow*> merged;
+    for (const auto& r : p_rows) merged[r.row] = &r;
+    for (const auto& r : pt_rows) merged[r.row] = &r;
+    std::vector<double> send;
+    for (const auto& [g, r] : merged) {
+      send.push_back(static_cast<double>(g));
+      send.push_back(static_cast<double>(r->cols.size()));
+      for (std::size_t k = 0; k < r->cols.size(); ++k) {
+        send.push_back(static_cast<double>(r->cols[k]));
+        send.push_back(r->weights[k]);
+      }
+    }
+    const auto all = allgather(comm, send);
+    std::vector<PRow> rows;
+    for (std::size_t k = 0; k < all.size();) {
+      PRow r{static_cast<GO>(all[k]), {}, {}};
+      const auto n = static_cast<std::size_t>(all[k + 1]);
+      for (std::size_t j = 0; j < n; ++j) {
+        r.cols.push_back(static_cast<GO>(all[k + 2 + 2 * j]));
+        r.weights.push_back(all[k + 3 + 2 * j]);
+      }
+      k += 2 + 2 * n;
+      rows.push_back(std::move(r));
+    }
+    std::vector<const PRow*> ptrs;
+    for (const auto& r : rows) ptrs.push_back(&r);
+    flatten(ptrs, pt_row_ids_, pt_cols_, ptw, key_.pt);
+    const auto b = spans_from_key(key_.pt);
+    pt_spans_.resize(pt_row_ids_.size());
+    for (std::size_t k = 0; k < pt_spans_.size(); ++k) pt_spans_[k] = {b[k], b[k + 1]};
+  }
+  p_w_ = to_view("emc::structured::p_w", pw);
+  pt_w_ = to_view("emc::structured::pt_w", ptw);
+  x_rows_.clear();
+  x_cols_.clear();
+  key_.x.clear();
+  std::vector<double> xv;
+  for (const auto& e : X) {
+    x_rows_.push_back(e.row);
+    x_cols_.push_back(e.col);
+    xv.push_back(e.value);
+    key_.x.push_back(e.row);
+    key_.x.push_back(e.col);
+  }
+  x_v_ = to_view("emc::structured::x", xv);
+  d_rows_.clear();
+  std::vector<double> dv;
+  for (const auto& [g, v] : diag) {
+    d_rows_.push_back(g);
+    dv.push_back(v);
+  }
+  key_.d = d_rows_;
+  d_v_ = to_view("emc::structured::d", dv);
+}
+
+// ALGORITHM.md §3/§5: the contributions P_ki A_ij Pt_jl and the graph of the result.
+void StructuredReduction::build(const Matrix& A) {
+  ++builds_;
+  const auto& rows_map = *A.getRowMap();
+  const auto& col_map = *A.getColMap();
+  const LO n_own = static_cast<LO>(rows_map.getNodeNumElements());
+  // which of A's columns are plain (P's and Pt's row is e_j): not fixed, not special
+  Vector keep(A.getRowMap()), keep_col(A.getColMap());
+  keep.putScalar(1.0);
+  {
+    auto k = keep.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (GO g : fixed_) k(rows_map.getLocalElement(g), 0) = 0.0;
+    for (GO g : p_row_ids_) k(rows_map.getLocalElement(g), 0) = 0.0;
+  }
+  if (A.getCrsGraph()->getImporter().is_null())
+    keep_col.assign(keep);
+  else
+    keep_col.doImport(keep, *A.getCrsGraph()->getImporter(), Tpetra::INSERT);
+  auto keep_h = keep.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto keep_col_h = keep_col.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto find = [](const std::vector<GO>& ids, GO g) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), g);
+    return it != ids.end() && *it == g ? static_cast<int>(it - ids.begin()) : -1;
+  };
+
+  const auto lA = A.getLocalMatrixHost();
+  struct Contribution {
+    int a, ip, it;
+    GO k, l;
+  };
+  std::vector<Contribution> c;
+  c.reserve(lA.nnz());
+  std::vector<std::pair<GO, int>> prow, ptrow;  // (column, weight index)
+  for (LO i = 0; i < n_own; ++i) {
+    const GO gi = rows_map.getGlobalElement(i);
+    prow.clear();
+    if (keep_h(i, 0) != 0) {
+      prow.emplace_back(gi, 0);
+    } else if (const int s = find(p_row_ids_, gi); s >= 0) {
+      for (int w = p_spans_[s].begin; w < p_spans_[s].end; ++w) prow.emplace_back(p_cols_[w], w);
+    }
+    if (prow.empty()) continue;
+    for (auto e = lA.graph.row_map(i); e < lA.graph.row_map(i + 1); ++e) {
+      const LO lj = lA.graph.entries(e);
+      const GO gj = col_map.getGlobalElement(lj);
+      ptrow.clear();
+      if (keep_col_h(lj, 0) != 0) {
+        ptrow.emplace_back(gj, 0);
+      } else if (const int s = find(pt_row_ids_, gj); s >= 0) {
+        for (int w = pt_spans_[s].begin; w < pt_spans_[s].end; ++w)
+          ptrow.emplace_back(pt_cols_[w], w);
+      }
+      for (const auto& [k, ip] : prow)
+        for (const auto& [l, it] : ptrow) c.push_back({static_cast<int>(e), ip, it, k, l});
+    }
+  }
+
+  // rows: mine, then the rows owned elsewhere that I add to (FECrsGraph wants mine first)
+  std::vector<GO> remote;
+  for (const auto& x : c)
+    if (!rows_map.isNodeGlobalElement(x.k)) remote.push_back(x.k);
+  for (GO g : x_rows_)
+    if (!rows_map.isNodeGlobalElement(g)) remote.push_back(g);
+  std::sort(remote.begin(), remote.end());
+  remote.erase(std::unique(remote.begin(), remote.end()), remote.end());
+  std::vector<GO> overlap_ids(rows_map.getNodeElementList().begin(),
+                              rows_map.getNodeElementList().end());
+  overlap_ids.insert(overlap_ids.end(), remote.begin(), remote.end());
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  auto overlap =
+      rcp(new Map(invalid, Teuchos::ArrayView<const GO>(overlap_ids), 0, A.getRowMap()->getComm()));
+  auto row_of = [&](GO g) {
+    const LO l = rows_map.getLocalElement(g);
+    return l != Teuchos::OrdinalTraits<LO>::invalid()
+               ? l
+               : n_own + static_cast<LO>(std::lower_bound(remote.begin(), remote.end(), g) -
+                                         remote.begin());
+  };
+  std::vector<std::vector<GO>> cols(overlap_ids.size());
+  for (const auto& x : c) cols[row_of(x.k)].push_back(x.l);
+  for (std::size_t k = 0; k < x_rows_.size(); ++k) cols[row_of(x_rows_[k])].push_back(x_cols_[k]);
+  for (GO g : d_rows_) cols[row_of(g)].push_back(g);
+  Kokkos::DualView<std::size_t*, Node::device_type> count("emc::structured::count",
+                                                          overlap_ids.size());
+  for (auto& r : cols) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  for (std::size_t r = 0; r < cols.size(); ++r) count.h_view(r) = cols[r].size();
+  count.modify_host();
+  count.sync_device();
+  auto graph = rcp(new FEGraph(A.getRowMap(), overlap, count));
+  graph->beginAssembly();
+  for (std::size_t r = 0; r < cols.size(); ++r)
+    graph->insertGlobalIndices(overlap_ids[r], Teuchos::ArrayView<const GO>(cols[r]));
+  graph->endAssembly();
+  B_ = rcp(new FEMatrix(graph));
+
+  // positions in the values of the owned+shared local matrix
+  B_->beginAssembly();
+  {
+    const auto lB = B_->getLocalMatrixHost();
+    const auto& bcol = *B_->getColMap();
+    auto pos = [&](GO k, GO l) {
+      const LO r = row_of(k), cl = bcol.getLocalElement(l);
+      const auto* b = lB.graph.entries.data() + lB.graph.row_map(r);
+      const auto* e = lB.graph.entries.data() + lB.graph.row_map(r + 1);
+      const auto* it = std::lower_bound(b, e, cl);
+      if (it == e || *it != cl)
+        throw Error("internal: reduced-matrix entry missing from its graph");
+      return static_cast<int>(it - lB.graph.entries.data());
+    };
+    std::vector<int> ca(c.size()), cp(c.size()), ct(c.size()), cpos(c.size()), xp, dp;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      ca[k] = c[k].a;
+      cp[k] = c[k].ip;
+      ct[k] = c[k].it;
+      cpos[k] = pos(c[k].k, c[k].l);
+    }
+    for (std::size_t k = 0; k < x_rows_.size(); ++k) xp.push_back(pos(x_rows_[k], x_cols_[k]));
+    for (GO g : d_rows_) dp.push_back(pos(g, g));
+    c_a_ = to_view("emc::structured::a", ca);
+    c_ip_ = to_view("emc::structured::ip", cp);
+    c_it_ = to_view("emc::structured::it", ct);
+    c_pos_ = to_view("emc::structured::pos", cpos);
+    x_pos_ = to_view("emc::structured::x_pos", xp);
+    d_pos_ = to_view("emc::structured::d_pos", dp);
+  }
+  B_->endAssembly();
+}
+
+RCP<Matrix> StructuredReduction::apply(const Matrix& A) {
+  key_.col_map = A.getColMap().get();
+  key_.nnz = A.getNodeNumEntries();
+  int changed = B_.is_null() || !(key_ == built_for_) ? 1 : 0, any = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MAX, 1, &changed, &any);
+  if (any) {
+    build(A);
+    built_for_ = key_;
+  }
+  const auto vA = A.getLocalMatrixDevice().values;
+  B_->beginAssembly();
+  B_->setAllToScalar(0.0);
+  {
+    const auto vB = B_->getLocalMatrixDevice().values;
+    const auto a = c_a_, ip = c_ip_, it = c_it_, pos = c_pos_, xpos = x_pos_, dpos = d_pos_;
+    const auto pw = p_w_, ptw = pt_w_, xv = x_v_, dv = d_v_;
+    Kokkos::parallel_for(
+        "emcontact::linalg::structured_ptap", Kokkos::RangePolicy<ExecSpace>(0, a.extent(0)),
+        KOKKOS_LAMBDA(const int k) {
+          Kokkos::atomic_add(&vB(pos(k)), pw(ip(k)) * vA(a(k)) * ptw(it(k)));
+        });
+    Kokkos::parallel_for(
+        "emcontact::linalg::structured_x_d", Kokkos::RangePolicy<ExecSpace>(0, 1),
+        KOKKOS_LAMBDA(const int) {
+          for (std::size_t k = 0; k < xpos.extent(0); ++k) vB(xpos(k)) += xv(k);
+          for (std::size_t k = 0; k < dpos.extent(0); ++k) vB(dpos(k)) += dv(k);
+        });
+  }
+  B_->endAssembly();
+  return B_;
+}
+
+}  // namespace emc::linalg
