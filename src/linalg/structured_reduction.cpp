@@ -128,13 +128,10 @@ void StructuredReduction::set(const std::vector<GO>& fixed, const std::vector<PR
   d_v_ = to_view("emc::structured::d", dv);
 }
 
-// ALGORITHM.md §3/§5: the contributions P_ki A_ij Pt_jl and the graph of the result.
-void StructuredReduction::build(const Matrix& A) {
-  ++builds_;
+// Which of A's local columns are plain (P's and Pt's row is e_j: not fixed, not special).
+std::vector<char> StructuredReduction::plain_columns(const Matrix& A,
+                                                     std::vector<char>& plain_row) const {
   const auto& rows_map = *A.getRowMap();
-  const auto& col_map = *A.getColMap();
-  const LO n_own = static_cast<LO>(rows_map.getNodeNumElements());
-  // which of A's columns are plain (P's and Pt's row is e_j): not fixed, not special
   Vector keep(A.getRowMap()), keep_col(A.getColMap());
   keep.putScalar(1.0);
   {
@@ -146,8 +143,25 @@ void StructuredReduction::build(const Matrix& A) {
     keep_col.assign(keep);
   else
     keep_col.doImport(keep, *A.getCrsGraph()->getImporter(), Tpetra::INSERT);
-  auto keep_h = keep.getLocalViewHost(Tpetra::Access::ReadOnly);
-  auto keep_col_h = keep_col.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto kh = keep.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto kc = keep_col.getLocalViewHost(Tpetra::Access::ReadOnly);
+  plain_row.assign(kh.extent(0), 0);
+  for (std::size_t i = 0; i < kh.extent(0); ++i) plain_row[i] = kh(i, 0) != 0;
+  std::vector<char> plain(kc.extent(0));
+  for (std::size_t j = 0; j < kc.extent(0); ++j) plain[j] = kc(j, 0) != 0;
+  return plain;
+}
+
+// ALGORITHM.md §3/§5: the contributions P_ki A_ij Pt_jl and the graph of the result. An entry
+// of A in a plain row and a plain column is copied to (i, j) (most of them: found row by row
+// below, without a list); the others, X and D are listed with their weights.
+void StructuredReduction::build(const Matrix& A) {
+  ++builds_;
+  const auto& rows_map = *A.getRowMap();
+  const auto& col_map = *A.getColMap();
+  const LO n_own = static_cast<LO>(rows_map.getNodeNumElements());
+  std::vector<char> plain_row;
+  const std::vector<char> plain_col = plain_columns(A, plain_row);
   auto find = [](const std::vector<GO>& ids, GO g) {
     const auto it = std::lower_bound(ids.begin(), ids.end(), g);
     return it != ids.end() && *it == g ? static_cast<int>(it - ids.begin()) : -1;
@@ -159,12 +173,11 @@ void StructuredReduction::build(const Matrix& A) {
     GO k, l;
   };
   std::vector<Contribution> c;
-  c.reserve(lA.nnz());
   std::vector<std::pair<GO, int>> prow, ptrow;  // (column, weight index)
   for (LO i = 0; i < n_own; ++i) {
     const GO gi = rows_map.getGlobalElement(i);
     prow.clear();
-    if (keep_h(i, 0) != 0) {
+    if (plain_row[i]) {
       prow.emplace_back(gi, 0);
     } else if (const int s = find(p_row_ids_, gi); s >= 0) {
       for (int w = p_spans_[s].begin; w < p_spans_[s].end; ++w) prow.emplace_back(p_cols_[w], w);
@@ -172,9 +185,10 @@ void StructuredReduction::build(const Matrix& A) {
     if (prow.empty()) continue;
     for (auto e = lA.graph.row_map(i); e < lA.graph.row_map(i + 1); ++e) {
       const LO lj = lA.graph.entries(e);
+      if (plain_row[i] && plain_col[lj]) continue;  // a plain entry
       const GO gj = col_map.getGlobalElement(lj);
       ptrow.clear();
-      if (keep_col_h(lj, 0) != 0) {
+      if (plain_col[lj]) {
         ptrow.emplace_back(gj, 0);
       } else if (const int s = find(pt_row_ids_, gj); s >= 0) {
         for (int w = pt_spans_[s].begin; w < pt_spans_[s].end; ++w)
@@ -193,12 +207,6 @@ void StructuredReduction::build(const Matrix& A) {
     if (!rows_map.isNodeGlobalElement(g)) remote.push_back(g);
   std::sort(remote.begin(), remote.end());
   remote.erase(std::unique(remote.begin(), remote.end()), remote.end());
-  std::vector<GO> overlap_ids(rows_map.getNodeElementList().begin(),
-                              rows_map.getNodeElementList().end());
-  overlap_ids.insert(overlap_ids.end(), remote.begin(), remote.end());
-  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-  auto overlap =
-      rcp(new Map(invalid, Teuchos::ArrayView<const GO>(overlap_ids), 0, A.getRowMap()->getComm()));
   auto row_of = [&](GO g) {
     const LO l = rows_map.getLocalElement(g);
     return l != Teuchos::OrdinalTraits<LO>::invalid()
@@ -206,40 +214,17 @@ void StructuredReduction::build(const Matrix& A) {
                : n_own + static_cast<LO>(std::lower_bound(remote.begin(), remote.end(), g) -
                                          remote.begin());
   };
-  std::vector<std::vector<GO>> cols(overlap_ids.size());
-  for (const auto& x : c) cols[row_of(x.k)].push_back(x.l);
-  for (std::size_t k = 0; k < x_rows_.size(); ++k) cols[row_of(x_rows_[k])].push_back(x_cols_[k]);
-  for (GO g : d_rows_) cols[row_of(g)].push_back(g);
-  Kokkos::DualView<std::size_t*, Node::device_type> count("emc::structured::count",
-                                                          overlap_ids.size());
-  for (auto& r : cols) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
-  for (std::size_t r = 0; r < cols.size(); ++r) count.h_view(r) = cols[r].size();
-  count.modify_host();
-  count.sync_device();
-  auto graph = rcp(new FEGraph(A.getRowMap(), overlap, count));
-  graph->beginAssembly();
-  for (std::size_t r = 0; r < cols.size(); ++r)
-    graph->insertGlobalIndices(overlap_ids[r], Teuchos::ArrayView<const GO>(cols[r]));
-  graph->endAssembly();
-  B_ = rcp(new FEMatrix(graph));
-
-  // positions in the values of the owned+shared local matrix
-  B_->beginAssembly();
-  {
-    const auto lB = B_->getLocalMatrixHost();
-    const auto& bcol = *B_->getColMap();
-    auto pos = [&](GO k, GO l) {
-      const LO r = row_of(k), cl = bcol.getLocalElement(l);
-      const auto* b = lB.graph.entries.data() + lB.graph.row_map(r);
-      const auto* e = lB.graph.entries.data() + lB.graph.row_map(r + 1);
-      const auto* it = std::lower_bound(b, e, cl);
-      if (it == e || *it != cl)
-        throw Error("internal: reduced-matrix entry missing from its graph");
-      return static_cast<int>(it - lB.graph.entries.data());
-    };
+  // the listed entries by row; each row of the graph: its plain entries, then these
+  std::vector<std::pair<LO, GO>> extra;
+  extra.reserve(c.size() + x_rows_.size() + d_rows_.size());
+  for (const auto& x : c) extra.emplace_back(row_of(x.k), x.l);
+  for (std::size_t k = 0; k < x_rows_.size(); ++k)
+    extra.emplace_back(row_of(x_rows_[k]), x_cols_[k]);
+  for (GO g : d_rows_) extra.emplace_back(row_of(g), g);
+  std::sort(extra.begin(), extra.end());
+  extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+  B_ = rcp(new FEMatrix(make_graph(A, plain_row, plain_col, remote, extra)));
+  find_positions(A, plain_row, plain_col, row_of, [&](auto&& pos) {
     std::vector<int> ca(c.size()), cp(c.size()), ct(c.size()), cpos(c.size()), xp, dp;
     for (std::size_t k = 0; k < c.size(); ++k) {
       ca[k] = c[k].a;
@@ -255,7 +240,89 @@ void StructuredReduction::build(const Matrix& A) {
     c_pos_ = to_view("emc::structured::pos", cpos);
     x_pos_ = to_view("emc::structured::x_pos", xp);
     d_pos_ = to_view("emc::structured::d_pos", dp);
+  });
+}
+
+// The FE graph: my rows (plain entries of A's row, then the listed ones) and the rows owned
+// elsewhere that I add to. `extra`: sorted unique (overlap row, column).
+RCP<FEGraph> StructuredReduction::make_graph(const Matrix& A, const std::vector<char>& plain_row,
+                                             const std::vector<char>& plain_col,
+                                             const std::vector<GO>& remote,
+                                             const std::vector<std::pair<LO, GO>>& extra) const {
+  const auto& rows_map = *A.getRowMap();
+  const auto& col_map = *A.getColMap();
+  const LO n_own = static_cast<LO>(rows_map.getNodeNumElements());
+  const auto lA = A.getLocalMatrixHost();
+  std::vector<GO> ids(rows_map.getNodeElementList().begin(), rows_map.getNodeElementList().end());
+  ids.insert(ids.end(), remote.begin(), remote.end());
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  auto overlap = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(ids), 0, rows_map.getComm()));
+  Kokkos::DualView<std::size_t*, Node::device_type> count("emc::structured::count", ids.size());
+  std::vector<std::size_t> first(ids.size() + 1, 0);  // each row's range in `extra`
+  for (const auto& [r, g] : extra) ++first[r + 1];
+  for (std::size_t r = 0; r < ids.size(); ++r) first[r + 1] += first[r];
+  std::vector<std::vector<GO>> cols(1);
+  auto& row = cols[0];
+  auto fill_row = [&](LO r) {  // plain entries and listed ones, without duplicates
+    row.clear();
+    if (r < n_own && plain_row[r])
+      for (auto e = lA.graph.row_map(r); e < lA.graph.row_map(r + 1); ++e)
+        if (plain_col[lA.graph.entries(e)])
+          row.push_back(col_map.getGlobalElement(lA.graph.entries(e)));
+    const std::size_t n_plain = row.size();
+    for (std::size_t k = first[r]; k < first[r + 1]; ++k) row.push_back(extra[k].second);
+    if (first[r + 1] > first[r] && n_plain > 0) {
+      std::sort(row.begin(), row.end());
+      row.erase(std::unique(row.begin(), row.end()), row.end());
+    }
+  };
+  for (std::size_t r = 0; r < ids.size(); ++r) {
+    fill_row(static_cast<LO>(r));
+    count.h_view(r) = row.size();
   }
+  count.modify_host();
+  count.sync_device();
+  auto graph = rcp(new FEGraph(A.getRowMap(), overlap, count));
+  graph->beginAssembly();
+  for (std::size_t r = 0; r < ids.size(); ++r) {
+    fill_row(static_cast<LO>(r));
+    graph->insertGlobalIndices(ids[r], Teuchos::ArrayView<const GO>(row));
+  }
+  graph->endAssembly();
+  return graph;
+}
+
+// Positions in the values of B's owned+shared local matrix: of every plain entry of A (a
+// column marker per row), and, through `use(pos)`, of any (row, column) listed.
+template <class RowOf, class Use>
+void StructuredReduction::find_positions(const Matrix& A, const std::vector<char>& plain_row,
+                                         const std::vector<char>& plain_col, const RowOf& row_of,
+                                         const Use& use) {
+  B_->beginAssembly();
+  const auto lA = A.getLocalMatrixHost();
+  const auto lB = B_->getLocalMatrixHost();
+  const auto& bcol = *B_->getColMap();
+  const auto& acol = *A.getColMap();
+  std::vector<LO> a2b(acol.getNodeNumElements());  // A's local columns in B's column map
+  for (std::size_t j = 0; j < a2b.size(); ++j)
+    a2b[j] = bcol.getLocalElement(acol.getGlobalElement(j));
+  std::vector<int> plain_pos(lA.nnz(), -1), marker(bcol.getNodeNumElements(), -1);
+  for (std::size_t i = 0; i < plain_row.size(); ++i) {
+    if (!plain_row[i]) continue;
+    for (auto p = lB.graph.row_map(i); p < lB.graph.row_map(i + 1); ++p)
+      marker[lB.graph.entries(p)] = static_cast<int>(p);
+    for (auto e = lA.graph.row_map(i); e < lA.graph.row_map(i + 1); ++e)
+      if (plain_col[lA.graph.entries(e)]) plain_pos[e] = marker[a2b[lA.graph.entries(e)]];
+  }
+  plain_pos_ = to_view("emc::structured::plain_pos", plain_pos);
+  use([&](GO k, GO l) {
+    const LO r = row_of(k), cl = bcol.getLocalElement(l);
+    const auto* b = lB.graph.entries.data() + lB.graph.row_map(r);
+    const auto* e = lB.graph.entries.data() + lB.graph.row_map(r + 1);
+    const auto* it = std::lower_bound(b, e, cl);
+    if (it == e || *it != cl) throw Error("internal: reduced-matrix entry missing from its graph");
+    return static_cast<int>(it - lB.graph.entries.data());
+  });
   B_->endAssembly();
 }
 
@@ -273,8 +340,14 @@ RCP<Matrix> StructuredReduction::apply(const Matrix& A) {
   B_->setAllToScalar(0.0);
   {
     const auto vB = B_->getLocalMatrixDevice().values;
+    const auto plain = plain_pos_;
     const auto a = c_a_, ip = c_ip_, it = c_it_, pos = c_pos_, xpos = x_pos_, dpos = d_pos_;
     const auto pw = p_w_, ptw = pt_w_, xv = x_v_, dv = d_v_;
+    Kokkos::parallel_for(  // distinct positions: no atomics
+        "emcontact::linalg::structured_plain", Kokkos::RangePolicy<ExecSpace>(0, plain.extent(0)),
+        KOKKOS_LAMBDA(const int e) {
+          if (plain(e) >= 0) vB(plain(e)) += vA(e);
+        });
     Kokkos::parallel_for(
         "emcontact::linalg::structured_ptap", Kokkos::RangePolicy<ExecSpace>(0, a.extent(0)),
         KOKKOS_LAMBDA(const int k) {

@@ -67,9 +67,18 @@ class StructuredReduction {
   // the contributions, found once per pattern: value += p_w(ip) * A(ea) * pt_w(it)
   Kokkos::View<int*, ExecSpace> c_a_, c_ip_, c_it_, c_pos_;
   Kokkos::View<int*, ExecSpace> x_pos_, d_pos_;
+  Kokkos::View<int*, ExecSpace> plain_pos_;  ///< per entry of A: its position, or -1
   Teuchos::RCP<FEMatrix> B_;
   int builds_ = 0;
   void build(const Matrix& A);
+  std::vector<char> plain_columns(const Matrix& A, std::vector<char>& plain_row) const;
+  Teuchos::RCP<FEGraph> make_graph(const Matrix& A, const std::vector<char>& plain_row,
+                                   const std::vector<char>& plain_col,
+                                   const std::vector<GO>& remote,
+                                   const std::vector<std::pair<LO, GO>>& extra) const;
+  template <class RowOf, class Use>
+  void find_positions(const Matrix& A, const std::vector<char>& plain_row,
+                      const std::vector<char>& plain_col, const RowOf& row_of, const Use& use);
 };
 
 }  // namespace emc::linalg
