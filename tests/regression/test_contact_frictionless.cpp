@@ -127,11 +127,16 @@ std::vector<std::array<double, 3>> body_momenta(emc::app::Simulation& sim) {
 // which step a node activates (two Newton start guesses gave disk 3 92.6% and 86.8%), so the
 // bound is: disk 3 ends with more than 80% of the momentum, the others with less than 15%.
 // E, Lx (along the plane) and Jz (about its normal) are conserved, the plane being
-// frictionless.
-TEST(Frictionless, ThreeDisksPassTheirMomentum) {
+// frictionless. Disk 1 also starts 1e-10 slower: its rim then first touches disk 2 inside a
+// step rather than exactly at its end, which, when the master was disk 2's whole boundary,
+// let disk 1 pass through (the rim's edge nodes lie in the planes of disk 2's faces, at gap 0
+// from them, and were never caught); the masters are now the rims.
+class ThreeDisks : public ::testing::TestWithParam<const char*> {};
+TEST_P(ThreeDisks, PassTheirMomentum) {
   emc::app::Options o;
   o.input = std::string(EMC_TEST_DIR) + "/../../inputs/three_disks.xml";
-  o.overrides = {"Output/every=0", "Output/plot=false", "Output/progress=false"};
+  o.overrides = {"Output/every=0", "Output/plot=false", "Output/progress=false",
+                 std::string("Bodies/disk1/Initial/velocity={") + GetParam() + ", 0, 0}"};
   auto sim = emc::app::setup(o, Tpetra::getDefaultComm());
   const auto m0 = sim->disc->monitors(*sim->state.u, *sim->state.V);
   const double p0 = body_momenta(*sim)[0][0];
@@ -154,3 +159,4 @@ TEST(Frictionless, ThreeDisksPassTheirMomentum) {
   EXPECT_LT(dLx, 1e-8);
   EXPECT_LT(dJz, 1e-8 * std::fabs(m0.J[1]));
 }
+INSTANTIATE_TEST_SUITE_P(Frictionless, ThreeDisks, ::testing::Values("1", "0.9999999999"));
