@@ -26,33 +26,25 @@ Kokkos::View<T*, ExecSpace> to_view(const char* label, const std::vector<T>& v) 
 /// Rows sorted by id, flattened: ids, spans into cols/weights (index 0: the weight 1 of a plain
 /// row), and the key (row, count, columns...).
 void flatten(std::vector<const PRow*> rows, std::vector<GO>& ids, std::vector<GO>& cols,
-             std::vector<double>& w, std::vector<GO>& key) {
+             std::vector<double>& w, std::vector<GO>& key, std::vector<RowSpan>& spans) {
   std::sort(rows.begin(), rows.end(), [](const PRow* a, const PRow* b) { return a->row < b->row; });
   ids.clear();
   cols.assign(1, -1);
   w.assign(1, 1.0);
   key.clear();
+  spans.clear();
   for (const PRow* r : rows) {
     ids.push_back(r->row);
     key.push_back(r->row);
     key.push_back(static_cast<GO>(r->cols.size()));
+    spans.push_back(
+        {static_cast<int>(cols.size()), static_cast<int>(cols.size() + r->cols.size())});
     for (std::size_t k = 0; k < r->cols.size(); ++k) {
       cols.push_back(r->cols[k]);
       w.push_back(r->weights[k]);
       key.push_back(r->cols[k]);
     }
   }
-}
-
-std::vector<int> spans_from_key(const std::vector<GO>& key) {  // begin of each row, then end
-  std::vector<int> begin;
-  int next = 1;
-  for (std::size_t k = 0; k < key.size(); k += 2 + key[k + 1]) {
-    begin.push_back(next);
-    next += static_cast<int>(key[k + 1]);
-  }
-  begin.push_back(next);
-  return begin;
 }
 
 }  // namespace
@@ -67,10 +59,7 @@ void StructuredReduction::set(const std::vector<GO>& fixed, const std::vector<PR
   {  // P: my rows
     std::vector<const PRow*> mine;
     for (const auto& r : p_rows) mine.push_back(&r);
-    flatten(mine, p_row_ids_, p_cols_, pw, key_.p);
-    const auto b = spans_from_key(key_.p);
-    p_spans_.resize(p_row_ids_.size());
-    for (std::size_t k = 0; k < p_spans_.size(); ++k) p_spans_[k] = {b[k], b[k + 1]};
+    flatten(mine, p_row_ids_, p_cols_, pw, key_.p, p_spans_);
   }
   {  // Pt: P with the given rows replaced, every rank's (A's columns may be anywhere)
     std::map<GO, const PRow*> merged;
@@ -99,10 +88,7 @@ void StructuredReduction::set(const std::vector<GO>& fixed, const std::vector<PR
     }
     std::vector<const PRow*> ptrs;
     for (const auto& r : rows) ptrs.push_back(&r);
-    flatten(ptrs, pt_row_ids_, pt_cols_, ptw, key_.pt);
-    const auto b = spans_from_key(key_.pt);
-    pt_spans_.resize(pt_row_ids_.size());
-    for (std::size_t k = 0; k < pt_spans_.size(); ++k) pt_spans_[k] = {b[k], b[k + 1]};
+    flatten(ptrs, pt_row_ids_, pt_cols_, ptw, key_.pt, pt_spans_);
   }
   p_w_ = to_view("emc::structured::p_w", pw);
   pt_w_ = to_view("emc::structured::pt_w", ptw);

@@ -27,6 +27,11 @@ struct Entry {
   double value;
 };
 
+/// A row of P or Pt as a range of flat arrays (whose index 0 holds the weight 1 of a plain row).
+struct RowSpan {
+  int begin = 0, end = 0;
+};
+
 class StructuredReduction {
  public:
   /// The constraints of one iterate. `fixed`: owned dofs whose row of P (and Pt) is empty;
@@ -51,16 +56,12 @@ class StructuredReduction {
              x == o.x && d == o.d;
     }
   };
-  /// A row of P or Pt as a range of the flat arrays; weight index 0 holds 1 (a plain row).
-  struct Span {
-    int begin = 0, end = 0;
-  };
   Key key_, built_for_;
   const Comm* comm_ = nullptr;
   std::vector<GO> fixed_;
   std::vector<GO> p_row_ids_, pt_row_ids_;
   std::vector<GO> p_cols_, pt_cols_;             ///< flat columns (index 0 unused)
-  std::vector<Span> p_spans_, pt_spans_;         ///< per special row, in id order
+  std::vector<RowSpan> p_spans_, pt_spans_;      ///< per special row, in id order
   Kokkos::View<double*, ExecSpace> p_w_, pt_w_;  ///< flat weights, [0] = 1
   Kokkos::View<double*, ExecSpace> x_v_, d_v_;   ///< X's and D's values, in the given order
   std::vector<GO> x_rows_, x_cols_, d_rows_;

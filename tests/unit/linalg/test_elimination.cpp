@@ -58,6 +58,24 @@ Teuchos::RCP<Matrix> distributed(const std::vector<std::vector<double>>& Ad,
   return A;
 }
 
+/// max |Ar - R| over my rows and max |R| (in `norm`), both reduced over the ranks.
+double max_error(const Matrix& Ar, const std::vector<std::vector<double>>& R, const Map& map,
+                 double& norm) {
+  double err = 0, nrm = 0;
+  for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) {
+    const GO i = map.getGlobalElement(l);
+    const auto row = dense_row(Ar, i);
+    for (int j = 0; j < kN; ++j) {
+      err = std::max(err, std::fabs(row[j] - R[i][j]));
+      nrm = std::max(nrm, std::fabs(R[i][j]));
+    }
+  }
+  double g[2] = {0, 0}, l[2] = {err, nrm};
+  Teuchos::reduceAll(*map.getComm(), Teuchos::REDUCE_MAX, 2, l, g);
+  norm = g[1];
+  return g[0];
+}
+
 }  // namespace
 
 TEST(Elimination, MatchesDenseReference) {
@@ -115,17 +133,8 @@ TEST(Elimination, MatchesDenseReference) {
   for (GO g : fixed_all) R[g][g] += 1;
   for (const auto& r : rows_all) R[r.row][r.row] += beta;
 
-  double err = 0, norm = 0;
-  for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
-    const GO i = map->getGlobalElement(l);
-    const auto row = dense_row(*Ar, i);
-    for (int j = 0; j < kN; ++j) {
-      err = std::max(err, std::fabs(row[j] - R[i][j]));
-      norm = std::max(norm, std::fabs(R[i][j]));
-    }
-  }
-  double gerr = 0;
-  Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &gerr);
+  double norm = 0;
+  const double gerr = max_error(*Ar, R, *map, norm);
   EXPECT_LT(gerr, 1e-14 * norm);
 
   // with a right factor Pt (slave rows differ) and an X (some entries in rows owned elsewhere,
@@ -355,19 +364,9 @@ TEST(Elimination, StructuredPathReusesItsPattern) {
     elim.set_linearisation(pt, X);
     const auto Ar = elim.reduce_matrix(A);
     const auto R = dense_reduced(Ad, fixed_all, p_all, pt_all, X_all, beta);
-    double err = 0, norm = 0;
-    for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
-      const GO i = map->getGlobalElement(l);
-      const auto row = dense_row(*Ar, i);
-      for (int j = 0; j < kN; ++j) {
-        err = std::max(err, std::fabs(row[j] - R[i][j]));
-        norm = std::max(norm, std::fabs(R[i][j]));
-      }
-    }
-    double gerr = 0, gnorm = 0;
-    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &gerr);
-    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &norm, &gnorm);
-    EXPECT_LT(gerr, 1e-14 * gnorm) << "pass " << pass;
+    double norm = 0;
+    const double err = max_error(*Ar, R, *map, norm);
+    EXPECT_LT(err, 1e-14 * norm) << "pass " << pass;
     builds += pass != 1;  // pass 1: the pattern of pass 0, new weights and values
     EXPECT_EQ(elim.pattern_builds(), builds) << "pass " << pass;
   }
