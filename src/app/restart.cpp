@@ -8,17 +8,26 @@
 
 namespace emc::app {
 
+namespace {
+
+/// The stepper's scalars, between State and Checkpoint (the same names in both).
+template <class From, class To>
+void copy_scalars(const From& f, To& t) {
+  t.step = f.step;
+  t.t = f.t;
+  t.dt = f.dt;
+  t.good_steps = f.good_steps;
+  t.last_h = f.last_h;
+  t.last_iterations = f.last_iterations;
+  t.newton_contraction = f.newton_contraction;
+}
+
+}  // namespace
 
 void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path) {
   const auto& s = sim.state;
   output::Checkpoint c;
-  c.step = s.step;
-  c.t = s.t;
-  c.dt = s.dt;
-  c.good_steps = s.good_steps;
-  c.last_h = s.last_h;
-  c.last_iterations = s.last_iterations;
-  c.newton_contraction = s.newton_contraction;
+  copy_scalars(s, c);
   c.u = dofs(*s.u);
   c.V = dofs(*s.V);
   int has = s.last_increment.is_null() ? 0 : 1;
@@ -64,13 +73,7 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   broadcast_vector(comm, c.active);
   broadcast_vector(comm, c.normal_force);
   auto& s = sim.state;
-  s.step = c.step;
-  s.t = c.t;
-  s.dt = c.dt;
-  s.last_h = c.last_h;
-  s.good_steps = c.good_steps;
-  s.last_iterations = c.last_iterations;
-  s.newton_contraction = c.newton_contraction;
+  copy_scalars(c, s);
   dofs.scatter(c.u, *s.u);
   dofs.scatter(c.V, *s.V);
   s.last_increment = Teuchos::null;

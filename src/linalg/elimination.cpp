@@ -51,14 +51,10 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
   fixed_ = fixed;
   rows_ = rows;
   P_ = build_P(rows);
-  if (masked_) {
-    auto keep = rcp(new Vector(owned_));
-    keep->putScalar(1.0);
-    auto k = keep->getLocalViewHost(Tpetra::Access::ReadWrite);
-    for (GO g : fixed_) k(owned_->getLocalElement(g), 0) = 0.0;
-    for (const auto& r : rows_) k(owned_->getLocalElement(r.row), 0) = 0.0;
-    masked_reduction_.set_keep(keep);
-  }
+  std::vector<GO> constrained = fixed_;
+  for (const auto& r : rows_) constrained.push_back(r.row);
+  keep_ = keep_vector(owned_, constrained);
+  if (masked_) masked_reduction_.set_keep(keep_);
   pt_rows_.clear();
   X_.clear();
   linearised_ = false;
@@ -90,7 +86,7 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
   if (masked_ && !linearised_) return masked_reduction_.apply(*A);
-  structured_reduction_.set(fixed_, rows_, pt_rows_, X_, diag_, *owned_->getComm());
+  structured_reduction_.set(keep_, fixed_, rows_, pt_rows_, X_, diag_, *owned_->getComm());
   return structured_reduction_.apply(*A);
 }
 

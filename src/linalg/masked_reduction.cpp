@@ -5,6 +5,23 @@ namespace emc::linalg {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
+RCP<Vector> keep_vector(const RCP<const Map>& owned, const std::vector<GO>& constrained) {
+  auto keep = rcp(new Vector(owned));
+  keep->putScalar(1.0);
+  auto k = keep->getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (GO g : constrained) k(owned->getLocalElement(g), 0) = 0.0;
+  return keep;
+}
+
+Vector keep_on_columns(const Vector& keep, const Matrix& A) {
+  Vector col(A.getColMap());
+  if (A.getCrsGraph()->getImporter().is_null())
+    col.assign(keep);  // the column map is the row map
+  else
+    col.doImport(keep, *A.getCrsGraph()->getImporter(), Tpetra::INSERT);
+  return col;
+}
+
 void MaskedReduction::set_keep(RCP<const Vector> keep) {
   keep_ = std::move(keep);
   keep_col_stale_ = true;
@@ -44,11 +61,7 @@ void MaskedReduction::copy_graph(const Matrix& A) {
 }
 
 void MaskedReduction::import_keep(const Matrix& A) {
-  Vector col(col_map_);
-  if (A.getCrsGraph()->getImporter().is_null())
-    col.assign(*keep_);  // the column map is the row map
-  else
-    col.doImport(*keep_, *A.getCrsGraph()->getImporter(), Tpetra::INSERT);
+  const Vector col = keep_on_columns(*keep_, A);
   auto v = col.getLocalViewDevice(Tpetra::Access::ReadOnly);
   keep_col_ = Kokkos::View<double*, ExecSpace>("emc::masked::keep_col", v.extent(0));
   Kokkos::deep_copy(keep_col_, Kokkos::subview(v, Kokkos::ALL(), 0));

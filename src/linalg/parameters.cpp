@@ -18,7 +18,7 @@ void set_newton(Teuchos::ParameterList& pl) {
   pl.set("max iterations", 25, "Newton iterations per step before the step counts as failed.",
          int_at_least(1));
   pl.set("adaptive linear tolerance", true,
-         "Solve each Newton iteration's linear system only to a tenth of the residual the "
+         "Solve each Newton iteration's linear system only to a hundredth of the residual the "
          "quadratically converging Newton step leaves anyway (estimated from the residual "
          "history), never tighter than Solver/Linear/tolerance requires and never below the "
          "round-off floor; false: every solve to Solver/Linear/tolerance.");
@@ -28,9 +28,12 @@ void set_linear(Teuchos::ParameterList& pl) {
   pl.set("type", std::string("gmres"),
          "Linear solver: gmres; cg only for a symmetric Newton matrix (the midpoint integrator "
          "without frictionless contact; otherwise the run warns); klu2, direct, one rank only.",
-         string_choice("type", {"gmres", "cg", "klu2"},
-                       {"Belos GMRES (iterative)", "Belos conjugate gradients (iterative; only for a symmetric Newton matrix: the mid-point integrator without frictionless contact, otherwise the run warns)",
-                        "Amesos2 KLU2 (direct)"}));
+         string_choice(
+             "type", {"gmres", "cg", "klu2"},
+             {"Belos GMRES (iterative)",
+              "Belos conjugate gradients (iterative; only for a symmetric Newton matrix: the "
+              "mid-point integrator without frictionless contact, otherwise the run warns)",
+              "Amesos2 KLU2 (direct)"}));
   pl.set("preconditioner", std::string("ilu"),
          "Preconditioner of the iterative solvers (ignored by klu2).",
          string_choice("preconditioner", {"ilu", "schwarz", "muelu", "none"},

@@ -49,11 +49,12 @@ void flatten(std::vector<const PRow*> rows, std::vector<GO>& ids, std::vector<GO
 
 }  // namespace
 
-void StructuredReduction::set(const std::vector<GO>& fixed, const std::vector<PRow>& p_rows,
-                              const std::vector<PRow>& pt_rows, const std::vector<Entry>& X,
+void StructuredReduction::set(Teuchos::RCP<const Vector> keep, const std::vector<GO>& fixed,
+                              const std::vector<PRow>& p_rows, const std::vector<PRow>& pt_rows,
+                              const std::vector<Entry>& X,
                               const std::vector<std::pair<GO, double>>& diag, const Comm& comm) {
   comm_ = &comm;
-  fixed_ = fixed;
+  keep_ = std::move(keep);
   key_.fixed = fixed;
   std::vector<double> pw, ptw;
   {  // P: my rows
@@ -117,19 +118,8 @@ void StructuredReduction::set(const std::vector<GO>& fixed, const std::vector<PR
 // Which of A's local columns are plain (P's and Pt's row is e_j: not fixed, not special).
 std::vector<char> StructuredReduction::plain_columns(const Matrix& A,
                                                      std::vector<char>& plain_row) const {
-  const auto& rows_map = *A.getRowMap();
-  Vector keep(A.getRowMap()), keep_col(A.getColMap());
-  keep.putScalar(1.0);
-  {
-    auto k = keep.getLocalViewHost(Tpetra::Access::ReadWrite);
-    for (GO g : fixed_) k(rows_map.getLocalElement(g), 0) = 0.0;
-    for (GO g : p_row_ids_) k(rows_map.getLocalElement(g), 0) = 0.0;
-  }
-  if (A.getCrsGraph()->getImporter().is_null())
-    keep_col.assign(keep);
-  else
-    keep_col.doImport(keep, *A.getCrsGraph()->getImporter(), Tpetra::INSERT);
-  auto kh = keep.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const Vector keep_col = keep_on_columns(*keep_, A);
+  auto kh = keep_->getLocalViewHost(Tpetra::Access::ReadOnly);
   auto kc = keep_col.getLocalViewHost(Tpetra::Access::ReadOnly);
   plain_row.assign(kh.extent(0), 0);
   for (std::size_t i = 0; i < kh.extent(0); ++i) plain_row[i] = kh(i, 0) != 0;

@@ -62,6 +62,7 @@ class Elimination {
  private:
   Teuchos::RCP<const Map> owned_;
   Teuchos::RCP<Matrix> P_;
+  Teuchos::RCP<const Vector> keep_;          ///< 1 where P's row is e_i, 0 on fixed and slave rows
   std::vector<std::pair<GO, double>> diag_;  ///< D's entries (owned dofs)
   std::vector<GO> fixed_;
   std::vector<PRow> rows_, pt_rows_;  ///< P's special rows; Pt's that differ

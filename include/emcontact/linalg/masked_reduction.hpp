@@ -5,10 +5,18 @@
 // made once. No sparse products; the result is exactly the triple product's (products with
 // 1 and 0 are exact), with explicit zeros where the product would leave no entry.
 #include <Teuchos_RCP.hpp>
+#include <vector>
 
 #include "emcontact/types.hpp"
 
 namespace emc::linalg {
+
+/// 1 on the owned dofs whose row of P is e_i (kept), 0 on the `constrained` ones (fixed dofs and
+/// the rows of active slaves).
+Teuchos::RCP<Vector> keep_vector(const Teuchos::RCP<const Map>& owned,
+                                 const std::vector<GO>& constrained);
+/// `keep` on A's column map (through A's importer).
+Vector keep_on_columns(const Vector& keep, const Matrix& A);
 
 class MaskedReduction {
  public:
@@ -21,10 +29,10 @@ class MaskedReduction {
 
  private:
   Teuchos::RCP<const Vector> keep_, d_;
-  Teuchos::RCP<const Graph> graph_;               ///< copy of A's graph, made once
-  Teuchos::RCP<const Map> col_map_;               ///< A's column map it was made for
-  Kokkos::View<double*, ExecSpace> keep_col_;    ///< keep on A's local columns
-  Kokkos::View<long*, ExecSpace> diag_pos_;      ///< per row, its diagonal entry (or -1)
+  Teuchos::RCP<const Graph> graph_;            ///< copy of A's graph, made once
+  Teuchos::RCP<const Map> col_map_;            ///< A's column map it was made for
+  Kokkos::View<double*, ExecSpace> keep_col_;  ///< keep on A's local columns
+  Kokkos::View<long*, ExecSpace> diag_pos_;    ///< per row, its diagonal entry (or -1)
   bool keep_col_stale_ = true;
   void copy_graph(const Matrix& A);
   void import_keep(const Matrix& A);

@@ -10,6 +10,7 @@
 #include <Teuchos_RCP.hpp>
 #include <vector>
 
+#include "emcontact/linalg/masked_reduction.hpp"
 #include "emcontact/types.hpp"
 
 namespace emc::linalg {
@@ -34,12 +35,14 @@ struct RowSpan {
 
 class StructuredReduction {
  public:
-  /// The constraints of one iterate. `fixed`: owned dofs whose row of P (and Pt) is empty;
+  /// The constraints of one iterate. `keep`: 1 on the owned dofs whose rows of P and Pt are
+  /// e_i (keep_vector); `fixed`: owned dofs whose row of P (and Pt) is empty;
   /// `p_rows`, `pt_rows`: owned special rows of P and Pt (the same set of rows); `X`: entries
   /// anywhere; `diag`: D on owned dofs. Collective (Pt's rows are gathered on every rank).
-  void set(const std::vector<GO>& fixed, const std::vector<PRow>& p_rows,
-           const std::vector<PRow>& pt_rows, const std::vector<Entry>& X,
-           const std::vector<std::pair<GO, double>>& diag, const Comm& comm);
+  void set(Teuchos::RCP<const Vector> keep, const std::vector<GO>& fixed,
+           const std::vector<PRow>& p_rows, const std::vector<PRow>& pt_rows,
+           const std::vector<Entry>& X, const std::vector<std::pair<GO, double>>& diag,
+           const Comm& comm);
   /// P^T A Pt + X + D (collective). The same matrix object is refilled while the pattern
   /// holds, so it is valid until the next call.
   Teuchos::RCP<Matrix> apply(const Matrix& A);
@@ -58,7 +61,7 @@ class StructuredReduction {
   };
   Key key_, built_for_;
   const Comm* comm_ = nullptr;
-  std::vector<GO> fixed_;
+  Teuchos::RCP<const Vector> keep_;
   std::vector<GO> p_row_ids_, pt_row_ids_;
   std::vector<GO> p_cols_, pt_cols_;             ///< flat columns (index 0 unused)
   std::vector<RowSpan> p_spans_, pt_spans_;      ///< per special row, in id order
