@@ -40,31 +40,51 @@ KOKKOS_INLINE_FUNCTION double facet_outside(const double xi[2]) {
   return -m;
 }
 
-/// Closest-point projection of y on the facet's plane: xi and the gap g_N (ALGORITHM.md §2).
-/// Returns false for a degenerate facet.
-KOKKOS_INLINE_FUNCTION bool facet_cpp(const double y[3], const double xm[3][3], double xi[2],
-                                      double& gap) {
-  const Facet f = facet(xm);
-  double d[3];
-  for (int i = 0; i < 3; ++i) d[i] = y[i] - xm[0][i];
-  double g11 = 0, g12 = 0, g22 = 0, b1 = 0, b2 = 0;
+/// What the CPP needs of a facet, independent of the point: its frame and the metric
+/// g_ab = tau_a . tau_b of the 2x2 normal equations (the contact search keeps one per facet).
+struct FacetMetric {
+  Facet f;
+  double g11, g12, g22, det;
+};
+
+KOKKOS_INLINE_FUNCTION FacetMetric facet_metric(const double xm[3][3]) {
+  FacetMetric m;
+  m.f = facet(xm);
+  m.g11 = m.g12 = m.g22 = 0;
   for (int i = 0; i < 3; ++i) {
-    g11 += f.t1[i] * f.t1[i];
-    g12 += f.t1[i] * f.t2[i];
-    g22 += f.t2[i] * f.t2[i];
-    b1 += f.t1[i] * d[i];
-    b2 += f.t2[i] * d[i];
+    m.g11 += m.f.t1[i] * m.f.t1[i];
+    m.g12 += m.f.t1[i] * m.f.t2[i];
+    m.g22 += m.f.t2[i] * m.f.t2[i];
   }
-  const double det = g11 * g22 - g12 * g12;
-  if (!(det > 0)) return false;
-  xi[0] = (g22 * b1 - g12 * b2) / det;
-  xi[1] = (g11 * b2 - g12 * b1) / det;
+  m.det = m.g11 * m.g22 - m.g12 * m.g12;
+  return m;
+}
+
+/// Closest-point projection of y on the facet's plane: xi and the gap g_N (ALGORITHM.md §2),
+/// with the facet's metric. Returns false for a degenerate facet.
+KOKKOS_INLINE_FUNCTION bool facet_cpp(const double y[3], const double xm[3][3],
+                                      const FacetMetric& m, double xi[2], double& gap) {
+  if (!(m.det > 0)) return false;
+  double b1 = 0, b2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = y[i] - xm[0][i];
+    b1 += m.f.t1[i] * d;
+    b2 += m.f.t2[i] * d;
+  }
+  xi[0] = (m.g22 * b1 - m.g12 * b2) / m.det;
+  xi[1] = (m.g11 * b2 - m.g12 * b1) / m.det;
   double N[3];
   facet_shape(xi, N);
   gap = 0;
   for (int i = 0; i < 3; ++i)
-    gap += (y[i] - N[0] * xm[0][i] - N[1] * xm[1][i] - N[2] * xm[2][i]) * f.n[i];
+    gap += (y[i] - N[0] * xm[0][i] - N[1] * xm[1][i] - N[2] * xm[2][i]) * m.f.n[i];
   return true;
+}
+
+/// The same for a facet given by its nodes only.
+KOKKOS_INLINE_FUNCTION bool facet_cpp(const double y[3], const double xm[3][3], double xi[2],
+                                      double& gap) {
+  return facet_cpp(y, xm, facet_metric(xm), xi, gap);
 }
 
 }  // namespace emc::kernels

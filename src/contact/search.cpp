@@ -8,24 +8,16 @@
 
 namespace emc::contact {
 
-// The record of facet f: grown box, nodes, tangents, normal and metric (ALGORITHM.md §2).
+// The record of facet f: grown box, nodes and the CPP's metric (ALGORITHM.md §2).
 void FacetGrid::precompute(int f, double margin) {
   FacetData& d = data_[f];
   for (int a = 0; a < 3; ++a)
     for (int i = 0; i < 3; ++i) d.xm[a][i] = x_[3 * facets_[f][a] + i];
-  const kernels::Facet geo = kernels::facet(d.xm);
-  d.g11 = d.g12 = d.g22 = 0;
+  d.metric = kernels::facet_metric(d.xm);
   for (int i = 0; i < 3; ++i) {
     d.box[i] = std::min({d.xm[0][i], d.xm[1][i], d.xm[2][i]}) - margin;
     d.box[3 + i] = std::max({d.xm[0][i], d.xm[1][i], d.xm[2][i]}) + margin;
-    d.t1[i] = geo.t1[i];
-    d.t2[i] = geo.t2[i];
-    d.n[i] = geo.n[i];
-    d.g11 += geo.t1[i] * geo.t1[i];
-    d.g12 += geo.t1[i] * geo.t2[i];
-    d.g22 += geo.t2[i] * geo.t2[i];
   }
-  d.det = d.g11 * d.g22 - d.g12 * d.g12;
 }
 
 FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
@@ -81,25 +73,10 @@ int FacetGrid::cell_of(const double y[3], int d[3]) const {
   return (d[2] * dims_[1] + d[1]) * dims_[0] + d[0];
 }
 
-// kernels::facet_cpp with the facet's precomputed record: the same operations, the same bits.
+// kernels::facet_cpp with the facet's metric computed once.
 bool FacetGrid::cpp(int f, const double y[3], Hit& h) const {
-  const FacetData& fd = data_[f];
   h.facet = f;
-  if (!(fd.det > 0)) return false;
-  double b1 = 0, b2 = 0;
-  for (int i = 0; i < 3; ++i) {
-    const double d = y[i] - fd.xm[0][i];
-    b1 += fd.t1[i] * d;
-    b2 += fd.t2[i] * d;
-  }
-  h.xi[0] = (fd.g22 * b1 - fd.g12 * b2) / fd.det;
-  h.xi[1] = (fd.g11 * b2 - fd.g12 * b1) / fd.det;
-  double N[3];
-  kernels::facet_shape(h.xi, N);
-  h.gap = 0;
-  for (int i = 0; i < 3; ++i)
-    h.gap += (y[i] - N[0] * fd.xm[0][i] - N[1] * fd.xm[1][i] - N[2] * fd.xm[2][i]) * fd.n[i];
-  return true;
+  return kernels::facet_cpp(y, data_[f].xm, data_[f].metric, h.xi, h.gap);
 }
 
 // ALGORITHM.md §2 (choice of facet) and §5 step 2 (keep the current facet up to hyst).

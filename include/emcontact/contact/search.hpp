@@ -3,9 +3,10 @@
 // (expanded by a margin), rebuilt from the current positions whenever it is needed, and the
 // projection of a point on the closest valid facet among the candidates of its cell.
 #include <Kokkos_Core.hpp>
-
 #include <array>
 #include <vector>
+
+#include "kernels/facet.hpp"
 
 namespace emc::contact {
 
@@ -47,7 +48,8 @@ class FacetGrid {
   /// the 2x2 metric (g11, g12, g22, det), so that cpp() gives kernels::facet_cpp's bits.
   struct FacetData {
     double box[6];
-    double xm[3][3], t1[3], t2[3], n[3], g11, g12, g22, det;
+    double xm[3][3];
+    kernels::FacetMetric metric;
   };
   std::vector<FacetData> data_;
   void precompute(int f, double margin);
