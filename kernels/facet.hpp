@@ -87,4 +87,33 @@ KOKKOS_INLINE_FUNCTION bool facet_cpp(const double y[3], const double xm[3][3], 
   return facet_cpp(y, xm, facet_metric(xm), xi, gap);
 }
 
+/// The point of the facet closest to the plane point x(xi) (the metric g_ab of tau_xi, tau_eta):
+/// xi itself when inside, else its projection on the nearest edge, clamped to the edge's ends.
+KOKKOS_INLINE_FUNCTION void facet_clamp(const FacetMetric& m, double xi[2]) {
+  if (facet_outside(xi) <= 0) return;
+  // edges as (start, direction) in (xi, eta): m1 -> m2, m1 -> m3, m2 -> m3
+  const double a[3][2] = {{0, 0}, {0, 0}, {1, 0}}, d[3][2] = {{1, 0}, {0, 1}, {-1, 1}};
+  double best[2] = {xi[0], xi[1]}, best_d2 = -1;
+  for (int e = 0; e < 3; ++e) {
+    const double r[2] = {xi[0] - a[e][0], xi[1] - a[e][1]};
+    // |v|^2 in the facet's metric: v^T G v, G = [g11 g12; g12 g22]
+    const double dd =
+        m.g11 * d[e][0] * d[e][0] + 2 * m.g12 * d[e][0] * d[e][1] + m.g22 * d[e][1] * d[e][1];
+    const double rd =
+        m.g11 * r[0] * d[e][0] + m.g12 * (r[0] * d[e][1] + r[1] * d[e][0]) + m.g22 * r[1] * d[e][1];
+    double t = dd > 0 ? rd / dd : 0;
+    t = t < 0 ? 0 : (t > 1 ? 1 : t);
+    const double p[2] = {a[e][0] + t * d[e][0], a[e][1] + t * d[e][1]};
+    const double q[2] = {xi[0] - p[0], xi[1] - p[1]};
+    const double d2 = m.g11 * q[0] * q[0] + 2 * m.g12 * q[0] * q[1] + m.g22 * q[1] * q[1];
+    if (best_d2 < 0 || d2 < best_d2) {
+      best_d2 = d2;
+      best[0] = p[0];
+      best[1] = p[1];
+    }
+  }
+  xi[0] = best[0];
+  xi[1] = best[1];
+}
+
 }  // namespace emc::kernels

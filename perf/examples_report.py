@@ -68,21 +68,21 @@ def main():
     json.dump(res, open(res_path, 'w'), indent=1)
 
     md = ['Measured by `/usr/bin/python3 perf/examples_report.py` on this project\'s 2-core machine, one rank.', '',
-          '| example | tets | steps | wall s | Newton its/step (max) | max \\|E-E0\\|/\\|E0\\| | conserved components: max drift / initial \\|L\\| or \\|J\\| | contact periods [s] |',
-          '|---|---|---|---|---|---|---|---|']
+          '| example | tets | steps | wall s | Newton its/step (max) | max \\|E-E0\\|/\\|E0\\| | conserved components: max drift / initial \\|L\\| or \\|J\\| | contact periods [s] | active gap min / max [m] | re-solves/step |',
+          '|---|---|---|---|---|---|---|---|---|---|']
     for name, _ in EXAMPLES:
         if name not in res:
             continue
         r = res[name]
         comps = ', '.join('%s %.1e' % (c, r[c + '_drift_abs'] / max(r[c[0] + '_initial'], 1e-300))
                           for c in CONSERVED[name]) or 'none (gravity, full stick)'
-        md.append('| %s (%s) | %d | %d | %.0f | %.2f (%d) | %.1e | %s | %s |' % (
+        md.append('| %s (%s) | %d | %d | %.0f | %.2f (%d) | %.1e | %s | %s | %.2g / %.2g | %.2f |' % (
             name, r['date'], r['tets'], r['steps'], r['wall_s'], r['newton_per_step'], r['max_newton'], r['E_drift'],
-            comps, ', '.join('%.3f-%.3f' % tuple(p) for p in r['contact_periods'])))
-    md += ['', 'Wall times: one rank; other work ran on the second core during some of the runs. The hollow cylinders stay in '
-           'contact to the end and need about 2.8 re-solves of the active set per step (11 Newton iterations '
-           'per step); the KLU2 numeric factorisation of each Newton iteration is most of their time (196 of 296 s '
-           'in a run with the timers; the elimination 44 s).', '']
+            comps, ', '.join('%.3f-%.3f' % tuple(p) for p in r['contact_periods']), r['gap_min'], r['gap_max'],
+            r['resolves'] / max(1, r['steps'])))
+    md += ['', 'Wall times: one rank; other work ran on the second core during some of the runs. Active gap: g_N at '
+           'the end of the step of the nodes active in it (negative: penetration); re-solves: extra solves of a step '
+           'for the active set (docs/THEORY.md §6).', '']
     for name, _ in EXAMPLES:
         if name in res and os.path.exists(os.path.join(ROOT, 'docs', name + '_energies.png')):
             md.append('![%s: energies, L and J against time](docs/%s_energies.png)' % (name, name))

@@ -34,6 +34,14 @@ node is in contact with at most one master facet at a time. The rigid plane of t
 examples is z = 0 with normal +z: `type` `plane`, `center` `{0, 0, 0}`, `axis` `{0, 0, 1}`
 (the defaults), with a `half width` that covers the bodies.
 
+The master may be a body's whole boundary (its name) or one of its named surfaces
+(`body/surface`); both give the same contact: faces of equal size meeting flush, slave nodes on
+the master's edges and vertices, and nodes lying in the plane of a master face they do not touch
+are handled (a node is activated on the master facet it enters over the step, which faces it;
+docs/THEORY.md §6.3). A named surface only saves search work. A pair whose slave nodes already
+penetrate the master at t = 0 (overlapping bodies, or a rigid surface whose normal points away
+from the slave) is refused before the first step.
+
 )";
 
 }  // namespace

@@ -1,25 +1,25 @@
 // The application's data flow, one way: input -> mesh -> model -> discretization -> per step
 // [assemble -> eliminate -> solve -> update] -> monitors and fields.
-#include <Teuchos_TimeMonitor.hpp>
+#include "emcontact/app/run.hpp"
 
-#include <cmath>
-#include <cstdio>
-#include <csignal>
-#include <cstdlib>
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/app/progress.hpp"
 #include "emcontact/app/restart.hpp"
 #include "emcontact/app/root_gather.hpp"
-#include "emcontact/app/run.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/input/input.hpp"
-#include <Teuchos_CommHelpers.hpp>
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 #include "emcontact/output/atomic_file.hpp"
@@ -103,10 +103,11 @@ struct Writers {
     {
       auto h = c.getLocalViewHost(Tpetra::Access::OverwriteAll);
       Kokkos::deep_copy(h, 0.0);
-      for (std::size_t k = 0; k < s.active.size(); ++k) {
-        const LO l = disc.owned_map()->getLocalElement(fem::dof_gid(s.active[k].slave, 0));
-        h(l, 0) = 1.0;
-        h(l + 1, 0) = k < s.normal_force.size() ? s.normal_force[k] : 0.0;
+      // the nodes the monitors count (§6.5): 1 active, 2 released at the end of the step
+      for (std::size_t k = 0; k < s.contact_nodes.size(); ++k) {
+        const LO l = disc.owned_map()->getLocalElement(fem::dof_gid(s.contact_nodes[k], 0));
+        h(l, 0) = s.contact_status[k];
+        h(l + 1, 0) = s.contact_force[k];
       }
     }
     const auto packed = (*dofs)(c);
@@ -151,7 +152,9 @@ void plot_monitors(const std::string& dir) {
 /// at rest under a load) the largest K + W + |Pi| so far.
 /// Set by SIGTERM: the time loop writes a checkpoint after the step and stops.
 volatile std::sig_atomic_t g_terminate = 0;
-extern "C" void on_sigterm(int) { g_terminate = 1; }
+extern "C" void on_sigterm(int) {
+  g_terminate = 1;
+}
 
 /// --restart: the state from the checkpoint, the monitors of the output directory up to its
 /// step (returned: the initial row); the preconditioner starts fresh, as after a checkpoint.
@@ -204,14 +207,17 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   const auto& disc = *sim->disc;
   sim->contact =
       std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
+  if (opt.restart.empty())
+    sim->contact->check_initial_penetration(contact::positions(sim->model, {}), opt.input);
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
-  sim->solver =
-      std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm);
+  sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm);
   // CG needs a symmetric matrix: the mid-point tangent without frictionless contact is; the
   // energy-momentum tangent (ALGORITHM.md §1) and the frictionless P^T A Pt + X (§5) are not
   bool frictionless = false;
-  for (const auto& pr : sim->contact->pairs()) frictionless |= pr.kind == contact::Kind::frictionless;
-  if (comm->getRank() == 0 && P.sublist("Solver").sublist("Linear").get<std::string>("type") == "cg" &&
+  for (const auto& pr : sim->contact->pairs())
+    frictionless |= pr.kind == contact::Kind::frictionless;
+  if (comm->getRank() == 0 &&
+      P.sublist("Solver").sublist("Linear").get<std::string>("type") == "cg" &&
       (sim->model.integrator == kernels::Integrator::energy_momentum || frictionless))
     std::fprintf(stderr,
                  "warning: %s: Solver/Linear/type = cg on a non-symmetric Newton matrix "
@@ -221,9 +227,9 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
       disc, *sim->elim, *sim->solver, time::newton_options(P.sublist("Solver").sublist("Newton")));
   sim->state.u = rcp(new Vector(disc.owned_map()));
   sim->state.V = initial_velocity(disc);
-  sim->stepper = std::make_unique<time::Stepper>(P.sublist("Time"), *sim->newton, *sim->elim,
-                                                 owned_fixed_dofs(disc), sim->contact.get(),
-                                                 sim->state);
+  sim->stepper =
+      std::make_unique<time::Stepper>(P.sublist("Time"), *sim->newton, *sim->elim,
+                                      owned_fixed_dofs(disc), sim->contact.get(), sim->state);
   return sim;
 }
 
@@ -248,8 +254,10 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   comm->barrier();
   sum.setup_seconds = clock.totalElapsedTime(true);
   auto row0 = monitor_row(disc, state, time::StepReport{});
-  if (!opt.restart.empty()) row0 = restart(*sim, *w.dofs, opt.restart, sum.output_dir, w);
-  else if (root) w.monitors->append(row0);
+  if (!opt.restart.empty())
+    row0 = restart(*sim, *w.dofs, opt.restart, sum.output_dir, w);
+  else if (root)
+    w.monitors->append(row0);
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.get<int>("checkpoint every");
@@ -283,8 +291,8 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         const std::string file = sum.output_dir + "/checkpoint.h5";
         if (root) w.monitors->flush(true);
         save_checkpoint(*sim, *w.dofs, file);
-        throw RunError("stopped by SIGTERM after step " + std::to_string(state.step) + " (t = " +
-                       std::to_string(state.t) + "); continue with --restart " + file);
+        throw RunError("stopped by SIGTERM after step " + std::to_string(state.step) +
+                       " (t = " + std::to_string(state.t) + "); continue with --restart " + file);
       }
     }
   } catch (const RunError& e) {  // collective: every rank stops at the same step

@@ -1,13 +1,14 @@
 #include "emcontact/contact/contact.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-
 #include <algorithm>
-#include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <set>
 
+#include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/search.hpp"
+#include "emcontact/error.hpp"
 #include "emcontact/parallel.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/frictionless.hpp"
@@ -49,7 +50,9 @@ void Contact::facet_coords(const Active& a, const std::vector<double>& x, double
     for (int i = 0; i < 3; ++i) xm[k][i] = x[3 * f[k] + i];
 }
 
-// ALGORITHM.md §6.3 with §4: activation at the end-of-step position, xi from the CPP at t_n.
+// docs/THEORY.md §6.3: activation by the facet entered over the step; xi (clamped to the
+// facet) from the CPP at t_n for full stick (§4), of the trial mid-point at n+1/2 for
+// frictionless (§5).
 std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::vector<double>& x1,
                                     const std::vector<Active>& active) const {
   std::set<int> busy;
@@ -60,7 +63,7 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
     const auto& mine = my_slaves_[p];
     if (mine.empty()) continue;
     const FacetGrid grid1(pr.facets, x1, pr.dmax);
-    const FacetGrid grid0(pr.facets, x0, pr.dmax);
+    const EntryRule rule = entry_rule(pr);
     const int ns = static_cast<int>(mine.size());
     std::vector<Active> hit(ns);
     Kokkos::parallel_for(
@@ -68,27 +71,28 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
         [&, p](const int k) {
           const int s = mine[k];
           if (busy.count(s)) return;
-          const Hit h1 = grid1.locate(&x1[3 * s]);
-          // penetration beyond round-off (1e-12 of the activation depth): a node resting
-          // exactly on the master is not activated by noise
-          if (h1.facet < 0 || !(h1.gap < -1e-12 * pr.dmax && h1.gap > -pr.dmax)) return;
-          Hit h0;
-          if (pr.kind == Kind::full_stick) {  // §4: xi = CPP of x_{s,n} at t_n
-            h0 = grid0.locate(&x0[3 * s], h1.facet, 1e-3);
-          } else {  // §5: CPP of the trial mid-point on the facet at n+1/2
-            double xh[3];
-            for (int i = 0; i < 3; ++i) xh[i] = 0.5 * (x0[3 * s + i] + x1[3 * s + i]);
-            double xm0[3][3], xm1[3][3], xmh[3][3];
-            for (int a = 0; a < 3; ++a)
-              for (int i = 0; i < 3; ++i) {
-                xm0[a][i] = x0[3 * pr.facets[h1.facet][a] + i];
-                xm1[a][i] = x1[3 * pr.facets[h1.facet][a] + i];
-                xmh[a][i] = 0.5 * (xm0[a][i] + xm1[a][i]);
-              }
-            h0.facet = h1.facet;
-            kernels::facet_cpp(xh, xmh, h0.xi, h0.gap);
-          }
-          hit[k] = Active{s, static_cast<int>(p), h0.facet, {h0.xi[0], h0.xi[1]}, false};
+          double n_s[3];
+          slave_normal(pr, s, x1, n_s);
+          const Hit h1 = entered_facet(grid1, pr, x0, x1, s, n_s, rule);
+          if (h1.facet < 0) return;
+          double xm0[3][3], xm1[3][3], y[3];
+          for (int a = 0; a < 3; ++a)
+            for (int i = 0; i < 3; ++i) {
+              xm0[a][i] = x0[3 * pr.facets[h1.facet][a] + i];
+              xm1[a][i] = x1[3 * pr.facets[h1.facet][a] + i];
+            }
+          if (pr.kind == Kind::frictionless)  // the trial mid-point on the facet at n+1/2
+            for (int i = 0; i < 3; ++i) {
+              y[i] = 0.5 * (x0[3 * s + i] + x1[3 * s + i]);
+              for (int a = 0; a < 3; ++a) xm0[a][i] = 0.5 * (xm0[a][i] + xm1[a][i]);
+            }
+          else  // full stick: x_{s,n} on the facet at t_n
+            for (int i = 0; i < 3; ++i) y[i] = x0[3 * s + i];
+          const kernels::FacetMetric m = kernels::facet_metric(xm0);
+          double xi[2], gap;
+          if (!kernels::facet_cpp(y, xm0, m, xi, gap)) return;
+          kernels::facet_clamp(m, xi);
+          hit[k] = Active{s, static_cast<int>(p), h1.facet, {xi[0], xi[1]}, false};
         });
     for (const auto& a : hit)
       if (a.slave >= 0) {
@@ -97,6 +101,28 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
       }
   }
   return found;
+}
+
+// docs/THEORY.md §6.6: no slave node may start inside its master.
+void Contact::check_initial_penetration(const std::vector<double>& x,
+                                        const std::string& file) const {
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const Pair& pr = pairs_[p];
+    const Penetration mine = penetrating_nodes(pr, my_slaves_[p], x, 1e-9 * pr.edge);
+    const int count = global_count(mine.count);
+    if (count == 0) continue;
+    double deepest = 0;
+    Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MIN, 1, &mine.deepest, &deepest);
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "%s: Contact/%s: %d slave node%s penetrate%s the master at t = 0 (deepest "
+                  "%.3g, %.3g of the facet size); the bodies must not overlap at the start, "
+                  "and a master's facet normals must face the slave (a rigid plane's 'axis' "
+                  "points toward the slave)",
+                  file.c_str(), pr.name.c_str(), count, count == 1 ? "" : "s",
+                  count == 1 ? "s" : "", -deepest, -deepest / pr.edge);
+    throw InputError(buf);
+  }
 }
 
 std::vector<double> Contact::normal_forces(const Vector& g, const std::vector<double>& x0,
@@ -196,9 +222,8 @@ void Contact::constraint_rows(const std::vector<Active>& active, const ActiveInd
 // ALGORITHM.md §5: P rows du_s = N du_m + T dq, the exact right factor Pt and the variation X
 // of P^T; the slave's q dofs are its x and y dofs (dxi, deta), its z dof is the dummy.
 void Contact::frictionless_rows(const std::vector<Active>& active, const ActiveIndex& index,
-                                const std::vector<double>& x0,
-                                const std::vector<double>& x1, const Vector& g, const Matrix& A,
-                                std::vector<linalg::PRow>& rows,
+                                const std::vector<double>& x0, const std::vector<double>& x1,
+                                const Vector& g, const Matrix& A, std::vector<linalg::PRow>& rows,
                                 std::vector<linalg::PRow>& pt_rows, std::vector<linalg::Entry>& X,
                                 std::vector<std::pair<GO, double>>& dummy_beta) const {
   const auto& m = disc_.model();
@@ -286,7 +311,9 @@ void Contact::frictionless_project(std::vector<Active>& active, const std::vecto
       if (!grids[a.pair]) grids[a.pair] = std::make_unique<FacetGrid>(pr.facets, xh, pr.dmax);
       double y[3];
       for (int i = 0; i < 3; ++i) y[i] = xh[3 * a.slave + i];
-      const Hit h = grids[a.pair]->locate(y);
+      double n_s[3];
+      slave_normal(pr, a.slave, xh, n_s);
+      const Hit h = next_facet(*grids[a.pair], y, n_s, entry_rule(pr));
       if (h.facet >= 0 && h.facet != a.facet) {
         a.facet = h.facet;
         for (int i = 0; i < 3; ++i) xs1[i] = x1[3 * a.slave + i];
@@ -297,12 +324,42 @@ void Contact::frictionless_project(std::vector<Active>& active, const std::vecto
         out = kernels::frictionless_project(&x0[3 * a.slave], xs1, xm0, xm1, xi);
       }
     }
-    a.off = out > tol_f;  // kept with the extrapolated xi; released at the end of the step
+    // kept with the extrapolated xi, up to the edge extension of activation (§6.3) so that a
+    // node is not released where it would be caught again; beyond it released at the end of
+    // the step
+    a.off = out > EntryRule{}.edge;
     a.xi[0] = xi[0];
     a.xi[1] = xi[1];
     for (int c = 0; c < 3; ++c)
       uv(map.getLocalElement(fem::dof_gid(a.slave, c)), 0) = xs1[c] - m.X[3 * a.slave + c];
   }
+}
+
+// docs/THEORY.md §6.4: a start iterate that satisfies every full-stick constraint,
+// x_{s,n+1} - x_{s,n} = N (x_{m,n+1} - x_{m,n}) (§4), for a re-solve started from the last
+// solution. Rigid and fixed master nodes do not move. Collective (replicates u1).
+int Contact::stick_project(const std::vector<Active>& active, const std::vector<double>& u0all,
+                           Vector& u1) const {
+  const auto u1all = replicate(u1);
+  const auto& m = disc_.model();
+  const auto& map = *disc_.owned_map();
+  auto uv = u1.getLocalViewHost(Tpetra::Access::ReadWrite);
+  int moved = 0;
+  for (const auto& a : active) {
+    if (pairs_[a.pair].kind != Kind::full_stick) continue;
+    const auto& f = pairs_[a.pair].facets[a.facet];
+    double N[3];
+    kernels::facet_shape(a.xi, N);
+    for (int c = 0; c < 3; ++c) {
+      double v = u0all[3 * a.slave + c];
+      for (int i = 0; i < 3; ++i)
+        if (f[i] < m.num_nodes() && !m.fixed[f[i]])
+          v += N[i] * (u1all[3 * f[i] + c] - u0all[3 * f[i] + c]);
+      if (v != u1all[3 * a.slave + c]) ++moved;
+      uv(map.getLocalElement(fem::dof_gid(a.slave, c)), 0) = v;
+    }
+  }
+  return moved;
 }
 
 std::vector<std::pair<GO, double>> Contact::dummy_values(const Matrix& A,

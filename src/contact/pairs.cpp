@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "emcontact/error.hpp"
+#include "kernels/facet.hpp"
 
 namespace emc::contact {
 
@@ -24,8 +25,7 @@ SurfaceRef parse_ref(const fem::Model& m, const std::string& ref, const std::str
     names += (b ? ", " : "") + m.bodies[b].name;
     if (m.bodies[b].name == body) r.body = static_cast<int>(b);
   }
-  if (r.body < 0)
-    throw InputError(where + ": no body named \"" + body + "\"; bodies: " + names);
+  if (r.body < 0) throw InputError(where + ": no body named \"" + body + "\"; bodies: " + names);
   return r;
 }
 
@@ -64,7 +64,40 @@ double half_mean_edge(const std::vector<std::array<int, 3>>& facets, const std::
   return facets.empty() ? 0 : 0.5 * sum / (3.0 * facets.size());
 }
 
+/// The triangles around each slave node (CSR over the index into p.slaves).
+void index_slave_triangles(Pair& p) {
+  const auto index = [&p](int node) {
+    return static_cast<int>(std::lower_bound(p.slaves.begin(), p.slaves.end(), node) -
+                            p.slaves.begin());
+  };
+  p.tri_start.assign(p.slaves.size() + 1, 0);
+  for (const auto& t : p.slave_facets)
+    for (int a : t) ++p.tri_start[index(a) + 1];
+  for (std::size_t k = 0; k < p.slaves.size(); ++k) p.tri_start[k + 1] += p.tri_start[k];
+  p.slave_tris.resize(p.tri_start.back());
+  std::vector<int> fill(p.tri_start.begin(), p.tri_start.end() - 1);
+  for (std::size_t t = 0; t < p.slave_facets.size(); ++t)
+    for (int a : p.slave_facets[t]) p.slave_tris[fill[index(a)]++] = static_cast<int>(t);
+}
+
 }  // namespace
+
+void slave_normal(const Pair& p, int s, const std::vector<double>& x, double n[3]) {
+  n[0] = n[1] = n[2] = 0;
+  const auto it = std::lower_bound(p.slaves.begin(), p.slaves.end(), s);
+  if (it == p.slaves.end() || *it != s) return;
+  const auto k = it - p.slaves.begin();
+  for (int j = p.tri_start[k]; j < p.tri_start[k + 1]; ++j) {
+    const auto& t = p.slave_facets[p.slave_tris[j]];
+    double xm[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) xm[a][i] = x[3 * t[a] + i];
+    const kernels::Facet f = kernels::facet(xm);
+    for (int i = 0; i < 3; ++i) n[i] += f.area2 * f.n[i];
+  }
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (int i = 0; i < 3; ++i) n[i] = len > 0 ? n[i] / len : 0.0;
+}
 
 std::vector<double> positions(const fem::Model& model, const std::vector<double>& u) {
   std::vector<double> x(model.X.size() + model.rigid_X.size());
@@ -98,17 +131,22 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     if (s.body == m.body)
       throw InputError(where + ": slave and master are the same body \"" + sb.name +
                        "\"; self-contact is not supported");
-    for (const auto& t : surface_triangles(sb, s.surface, where + "/slave"))
+    for (const auto& t : surface_triangles(sb, s.surface, where + "/slave")) {
+      p.slave_facets.push_back({sb.node_begin + t[0], sb.node_begin + t[1], sb.node_begin + t[2]});
       for (int a : t) p.slaves.push_back(sb.node_begin + a);
+    }
     std::sort(p.slaves.begin(), p.slaves.end());
     p.slaves.erase(std::unique(p.slaves.begin(), p.slaves.end()), p.slaves.end());
+    index_slave_triangles(p);
     const int off = mb.rigid ? model.num_nodes() + mb.rigid_begin : mb.node_begin;
     for (const auto& t : surface_triangles(mb, m.surface, where + "/master"))
       p.facets.push_back({off + t[0], off + t[1], off + t[2]});
     if (p.facets.empty()) throw InputError(where + "/master: the surface has no triangles");
     p.master_body = m.body;
+    p.rigid_master = mb.rigid;
+    p.edge = 2 * half_mean_edge(p.facets, x0);
     p.dmax = c.get<double>("max penetration");
-    if (p.dmax <= 0) p.dmax = half_mean_edge(p.facets, x0);
+    if (p.dmax <= 0) p.dmax = 0.5 * p.edge;
     pairs.push_back(std::move(p));
   }
   return pairs;

@@ -1,12 +1,11 @@
 #include "emcontact/time/stepper.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <set>
-
-#include <Teuchos_CommHelpers.hpp>
 
 #include "emcontact/error.hpp"
 #include "emcontact/time/timers.hpp"
@@ -33,7 +32,9 @@ Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Eli
   }
 }
 
-bool Stepper::finished() const { return s_.t >= end_ - 1e-9 * dt_; }
+bool Stepper::finished() const {
+  return s_.t >= end_ - 1e-9 * dt_;
+}
 
 // The active set's constraints for the next solve; a new P invalidates the preconditioner.
 void Stepper::apply(std::vector<contact::Active>& active) {
@@ -49,6 +50,7 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   std::set<int> released, pinned;
   rep.contact = contact::StepContactStats{};
   std::vector<double> fN;
+  double r_first = 0;  // the first residual of the step's first solve
   for (int rep_no = 0;; ++rep_no) {
     apply(trial);
     // §1: the start iterate must satisfy every constraint. With no active contact, the last
@@ -56,17 +58,22 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
     // flips every step) scaled to h does (fixed dofs never move) and saves a Newton
     // iteration in smooth motion; while the last step needed more than 2 iterations (a body
     // ringing after an impact) it costs one, so u_n is used then, as with active contact.
-    u1.assign(u0);
-    if (s_.last_increment && s_.last_h > 0 && s_.last_iterations <= 2 &&
-        (!contact_ || contact_->global_count(static_cast<int>(trial.size())) == 0))
-      u1.update(h / s_.last_h, *s_.last_increment, 1.0);
-    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1);
+    // A re-solve of the active-set loop (§6.4) starts from the last solution, projected on the
+    // new set's constraints by the hooks' start (docs/THEORY.md §6.4).
+    if (rep_no == 0) {
+      u1.assign(u0);
+      if (s_.last_increment && s_.last_h > 0 && s_.last_iterations <= 2 &&
+          (!contact_ || contact_->global_count(static_cast<int>(trial.size())) == 0))
+        u1.update(h / s_.last_h, *s_.last_increment, 1.0);
+    }
+    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1, rep_no == 0 ? 0.0 : r_first);
     rep.newton_iterations += nr.iterations;
     rep.linear_iterations += nr.linear_iterations;
     if (!nr.converged) {
       rep.last_failure = nr.failure;
       return false;
     }
+    if (rep_no == 0 && !nr.residuals.empty()) r_first = nr.residuals.front();
     if (!contact_) return true;
     Teuchos::TimeMonitor tm(contact_timer());
     const auto x0 = contact::positions(contact_->disc_model(), contact_->replicate(u0));
@@ -103,11 +110,18 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   Teuchos::TimeMonitor tm(contact_timer());
   std::vector<contact::Active> keep;
   s_.normal_force.clear();
-  for (std::size_t k = 0; k < trial.size(); ++k)
-    if (fN[k] >= 0 && !trial[k].off) {
+  s_.contact_nodes.clear();
+  s_.contact_status.clear();
+  s_.contact_force.assign(fN.begin(), fN.end());
+  for (std::size_t k = 0; k < trial.size(); ++k) {
+    const bool stays = fN[k] >= 0 && !trial[k].off;
+    s_.contact_nodes.push_back(trial[k].slave);
+    s_.contact_status.push_back(stays ? 1 : 2);
+    if (stays) {
       keep.push_back(trial[k]);
       s_.normal_force.push_back(fN[k]);
     }
+  }
   const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
   rep.contact.active = contact_->global_count(static_cast<int>(trial.size()));
   rep.contact.reactivated = contact_->global_count(rep.contact.reactivated);

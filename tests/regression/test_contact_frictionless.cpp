@@ -3,10 +3,12 @@
 
 #include <cmath>
 
+#include "body_momenta.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "kernels/tet4.hpp"
 #include "run_case.hpp"
 
+using emc::testing::body_momenta;
 using emc::testing::diff3;
 using emc::testing::drifts;
 using emc::testing::norm3;
@@ -16,8 +18,8 @@ using emc::testing::run_case;
 // surface: L, J and E conserved to 1e-8 at every step through first contact, sliding and
 // release (the contact force is normal, does no work and has no moment about the mid-point).
 TEST(Frictionless, TwoDeformableBodiesConserveEJL) {
-  const auto rows = run_case("two_blocks.xml", {"Contact/A on B/type=frictionless"},
-                             "out_two_blocks_fl");
+  const auto rows =
+      run_case("two_blocks.xml", {"Contact/A on B/type=frictionless"}, "out_two_blocks_fl");
   const double p_scale = 8.0 * std::hypot(0.5, 0.1) + 8.0 * std::hypot(0.3, 0.1);
   double dL = 0;
   for (const auto& r : rows) dL = std::max(dL, norm3(diff3(r.L, rows[0].L)) / p_scale);
@@ -40,8 +42,9 @@ TEST(Frictionless, TwoDeformableBodiesConserveEJL) {
 // momentum (Lx, Ly) and the spin about the normal (Jz) are unchanged, E is conserved, no
 // accepted active node pulls (f_N >= 0) and none penetrates.
 TEST(Frictionless, BlockSlidingOnPlane) {
-  const auto rows = run_case("drop.xml", {"Contact/block on ground/type=frictionless",
-                                          "Bodies/block/Initial/angular velocity={0.5,0.3,2}"},
+  const auto rows = run_case("drop.xml",
+                             {"Contact/block on ground/type=frictionless",
+                              "Bodies/block/Initial/angular velocity={0.5,0.3,2}"},
                              "out_slide_fl");
   const auto& r0 = rows.front();
   const double mass = 1000 * 0.2 * 0.2 * 0.2, p_scale = mass * 0.3;
@@ -57,9 +60,10 @@ TEST(Frictionless, BlockSlidingOnPlane) {
       gmin = std::min(gmin, r.gap_min);
     }
   }
-  std::printf("sliding: %d contact steps; |dLx,dLy| %.3e (of %.3e) |dJz| %.3e (of %.3e) E %.3e; "
-              "min f_N %.3e, min gap %.3e\n",
-              contact, dLt, p_scale, dJz, std::fabs(r0.J[2]), dE, fmin, gmin);
+  std::printf(
+      "sliding: %d contact steps; |dLx,dLy| %.3e (of %.3e) |dJz| %.3e (of %.3e) E %.3e; "
+      "min f_N %.3e, min gap %.3e\n",
+      contact, dLt, p_scale, dJz, std::fabs(r0.J[2]), dE, fmin, gmin);
   EXPECT_GT(contact, 50);
   EXPECT_LT(dLt, 1e-10 * p_scale);
   EXPECT_LT(dJz, 1e-10 * std::fabs(r0.J[2]));
@@ -96,30 +100,6 @@ TEST(Frictionless, NewtonQuadraticWithDeformableMaster) {
   EXPECT_GT(best, 1.7);
 }
 
-namespace {
-
-/// Linear momentum of each body from the lumped row sums of the consistent mass (exact:
-/// sum_AB M_AB V_B = sum_B (sum_A M_AB) V_B).
-std::vector<std::array<double, 3>> body_momenta(emc::app::Simulation& sim) {
-  const auto& m = sim.model;
-  const auto V = sim.contact->replicate(*sim.state.V);
-  std::vector<double> lumped(m.num_nodes(), 0.0);
-  for (int e = 0; e < m.num_tets(); ++e) {
-    double x[4][3];
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
-    const double rho = m.bodies[m.body_of_tet[e]].density;
-    for (int a = 0; a < 4; ++a) lumped[m.tets[4 * e + a]] += rho * emc::kernels::tet_volume(x) / 4;
-  }
-  std::vector<std::array<double, 3>> p(m.bodies.size(), {0, 0, 0});
-  for (std::size_t b = 0; b < m.bodies.size(); ++b)
-    for (int n = m.bodies[b].node_begin; n < m.bodies[b].node_end; ++n)
-      for (int i = 0; i < 3; ++i) p[b][i] += lumped[n] * V[3 * n + i];
-  return p;
-}
-
-}  // namespace
-
 // The paper's first example (inputs/three_disks.xml): disk 1 passes its momentum to disk 2,
 // which passes it to disk 3. Equal rigid masses in a head-on elastic impact exchange their
 // momenta exactly; elastic disks keep part of the energy as vibration (about 8% of it after
@@ -128,9 +108,9 @@ std::vector<std::array<double, 3>> body_momenta(emc::app::Simulation& sim) {
 // bound is: disk 3 ends with more than 80% of the momentum, the others with less than 15%.
 // E, Lx (along the plane) and Jz (about its normal) are conserved, the plane being
 // frictionless. Disk 1 also starts 1e-10 slower: its rim then first touches disk 2 inside a
-// step rather than exactly at its end, which, when the master was disk 2's whole boundary,
-// let disk 1 pass through (the rim's edge nodes lie in the planes of disk 2's faces, at gap 0
-// from them, and were never caught); the masters are now the rims.
+// step rather than exactly at its end; with disk 2's whole boundary as master (as the input
+// has it) the rim's edge nodes lie in the planes of disk 2's faces, at gap 0 from them, and
+// were never caught before docs/THEORY.md §6.3 (disk 1 passed through disk 2).
 class ThreeDisks : public ::testing::TestWithParam<const char*> {};
 TEST_P(ThreeDisks, PassTheirMomentum) {
   emc::app::Options o;

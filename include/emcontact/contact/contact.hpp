@@ -29,9 +29,9 @@ struct ActiveIndex {
 };
 
 struct StepContactStats {
-  int active = 0;          ///< global number of active slave nodes at the accepted step
-  int resolves = 0;        ///< extra solves of the step for activation / release
-  int reactivated = 0;     ///< nodes released and activated again within the step (kept)
+  int active = 0;                   ///< global number of active slave nodes at the accepted step
+  int resolves = 0;                 ///< extra solves of the step for activation / release
+  int reactivated = 0;              ///< nodes released and activated again within the step (kept)
   double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active nodes (global)
   double normal_force_min = 0;      ///< smallest f_N of the nodes active at the accepted solve
 };
@@ -48,10 +48,15 @@ class Contact {
   /// Every node's displacement on every rank (3 N), from an owned vector.
   std::vector<double> replicate(const Vector& u) const;
 
-  /// §6.3: my inactive slave nodes whose end-of-step position penetrates their master
-  /// (-dmax < g_N < 0), with the facet and xi of their CPP at t_n (§4). x0, x1: positions.
+  /// §6.3: my inactive slave nodes that enter a master facet over the step (entered_facet),
+  /// with that facet and xi (clamped to it) of the CPP at t_n (§4) or of the trial mid-point
+  /// (§5). x0, x1: positions at t_n and t_{n+1}.
   std::vector<Active> detect(const std::vector<double>& x0, const std::vector<double>& x1,
                              const std::vector<Active>& active) const;
+
+  /// §6.6: throws InputError (naming `file`, the pair, the node count and the depth) if a
+  /// slave node penetrates its master in configuration x (collective).
+  void check_initial_penetration(const std::vector<double>& x, const std::string& file) const;
 
   /// f_N = g_s . n_{n+1/2} of each active entry (§4); g is the contactless residual.
   std::vector<double> normal_forces(const Vector& g, const std::vector<double>& x0,
@@ -61,8 +66,8 @@ class Contact {
   /// All ranks' active entries (collective).
   ActiveIndex gather(const std::vector<Active>& mine) const;
 
-  /// Rows of P for the active stick slaves (frictionless ones are skipped) (du_s = N du_m, §3-§4) and their dummy dofs;
-  /// columns of fixed master dofs are dropped (their column of P is zero).
+  /// Rows of P for the active stick slaves (frictionless ones are skipped) (du_s = N du_m, §3-§4)
+  /// and their dummy dofs; columns of fixed master dofs are dropped (their column of P is zero).
   void constraint_rows(const std::vector<Active>& active, const ActiveIndex& index,
                        const std::vector<double>& x0, const std::vector<double>& x1,
                        std::vector<linalg::PRow>& rows, std::vector<GO>& dummies) const;
@@ -77,15 +82,19 @@ class Contact {
   /// Frictionless (§5): adds P, Pt and X of the active frictionless slaves at the state
   /// (x0, x1), with g the contactless residual; dummy_beta gets (dummy dof, beta).
   void frictionless_rows(const std::vector<Active>& active, const ActiveIndex& index,
-                         const std::vector<double>& x0,
-                         const std::vector<double>& x1, const Vector& g, const Matrix& A,
-                         std::vector<linalg::PRow>& rows, std::vector<linalg::PRow>& pt_rows,
-                         std::vector<linalg::Entry>& X,
+                         const std::vector<double>& x0, const std::vector<double>& x1,
+                         const Vector& g, const Matrix& A, std::vector<linalg::PRow>& rows,
+                         std::vector<linalg::PRow>& pt_rows, std::vector<linalg::Entry>& X,
                          std::vector<std::pair<GO, double>>& dummy_beta) const;
   /// Update steps 2-3 of §5 for my frictionless slaves: facet (hysteresis tol_f = 1e-3, §5
   /// step 2), xi, and the normal correction of u1's slave dofs.
   void frictionless_project(std::vector<Active>& active, const std::vector<double>& x0,
                             const std::vector<double>& x1, Vector& u1) const;
+
+  /// Sets my active full-stick slaves' displacements in u1 so that their constraint holds
+  /// against u1's master displacements (§4); returns how many dofs moved. Collective.
+  int stick_project(const std::vector<Active>& active, const std::vector<double>& u0all,
+                    Vector& u1) const;
 
   /// beta = tr(A_ss)/3 for each dummy's slave (eq. 44), from A's diagonal.
   std::vector<std::pair<GO, double>> dummy_values(const Matrix& A,
@@ -103,7 +112,6 @@ class Contact {
   std::vector<std::vector<int>> my_slaves_;  ///< per pair: the slave nodes this rank owns
   Teuchos::RCP<const Map> all_;              ///< every dof on every rank
   Teuchos::RCP<const Import> to_all_;
-
 };
 
 }  // namespace emc::contact

@@ -4,7 +4,6 @@
 // Node numbering of the contact geometry: deformable nodes keep their global id n in
 // [0, num_nodes); rigid nodes are num_nodes + k, k indexing Model::rigid_X.
 #include <Teuchos_ParameterList.hpp>
-
 #include <array>
 #include <string>
 #include <vector>
@@ -22,6 +21,12 @@ struct Pair {
   std::vector<int> slaves;                 ///< global node ids, sorted
   std::vector<std::array<int, 3>> facets;  ///< geometry node ids, outward from the master
   int master_body = -1;
+  bool rigid_master = false;
+  double edge = 0;  ///< mean edge length of the master facets (reference configuration)
+  /// The slave surface's triangles (global node ids) and, per slave node (index k into
+  /// `slaves`), the triangles around it: slave_tris[tri_start[k] .. tri_start[k + 1]).
+  std::vector<std::array<int, 3>> slave_facets;
+  std::vector<int> tri_start, slave_tris;
 };
 
 /// Builds the pairs of the `Contact` section (empty if there is none). Throws InputError
@@ -32,5 +37,9 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
 /// Current positions of every geometry node: X + u for deformable nodes (u: all 3 N
 /// displacements, replicated), rigid_X for the rigid ones.
 std::vector<double> positions(const fem::Model& model, const std::vector<double>& u);
+
+/// The outward unit normal of the slave surface at slave node s (global id) in configuration
+/// x: the area-weighted mean of its slave triangles' normals (zero if s is not a slave).
+void slave_normal(const Pair& p, int s, const std::vector<double>& x, double n[3]);
 
 }  // namespace emc::contact

@@ -37,6 +37,27 @@ class FacetGrid {
 
   std::size_t num_cells() const { return cell_start_.extent(0) - 1; }
 
+  /// Calls fn(hit, outside) for every facet whose grown box holds y, with its CPP (hit.gap,
+  /// hit.xi) and kernels::facet_outside(hit.xi); degenerate facets are skipped. Facets come in
+  /// increasing id order.
+  template <class F>
+  void for_each_candidate(const double y[3], F&& fn) const {
+    int d[3];
+    const int c = cell_of(y, d);
+    if (c < 0) return;
+    for (int k = cell_start_(c); k < cell_start_(c + 1); ++k) {
+      const int f = cell_facets_(k);
+      const double* b = data_[f].box;
+      if (y[0] < b[0] || y[0] > b[3] || y[1] < b[1] || y[1] > b[4] || y[2] < b[2] || y[2] > b[5])
+        continue;
+      Hit h;
+      if (cpp(f, y, h)) fn(h, kernels::facet_outside(h.xi));
+    }
+  }
+
+  /// The frame and metric of facet f in the grid's configuration.
+  const kernels::FacetMetric& metric(int f) const { return data_[f].metric; }
+
  private:
   const std::vector<std::array<int, 3>>& facets_;
   const std::vector<double>& x_;

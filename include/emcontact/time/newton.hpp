@@ -4,7 +4,6 @@
 // converged when ||P^T g|| <= max(rtol ||P^T g_0||, atol, 100 eps ||scale||), where scale
 // bounds the round-off of g's four terms. No step is ever accepted unconverged.
 #include <Teuchos_ParameterList.hpp>
-
 #include <functional>
 #include <string>
 #include <vector>
@@ -19,28 +18,31 @@ struct NewtonOptions {
   double rtol = 1e-10, atol = 0;
   int max_iterations = 25;
   bool adaptive_linear_tolerance = true;  ///< see Newton::linear_tolerance
-  bool skip_last_matrix = true;  ///< no Newton matrix at an iterate predicted to converge
+  bool skip_last_matrix = true;           ///< no Newton matrix at an iterate predicted to converge
 };
 NewtonOptions newton_options(const Teuchos::ParameterList& newton);
 
 struct NewtonResult {
   bool converged = false;
-  int iterations = 0;         ///< linear solves done
-  int linear_iterations = 0;  ///< Krylov iterations summed
+  int iterations = 0;             ///< linear solves done
+  int linear_iterations = 0;      ///< Krylov iterations summed
   std::vector<double> residuals;  ///< ||P^T g|| per iterate
   double floor = 0;               ///< the round-off floor (or atol) at the last iterate
   int matrices = 0;               ///< Newton matrices assembled
   int extra_assemblies = 0;       ///< matrices assembled after a wrong prediction of convergence
-  std::string failure;        ///< why it did not converge
+  std::string failure;            ///< why it did not converge
 };
 
 class Newton {
  public:
-  Newton(const fem::Discretization& disc, linalg::Elimination& elim,
-         linalg::LinearSolver& solver, NewtonOptions opt);
+  Newton(const fem::Discretization& disc, linalg::Elimination& elim, linalg::LinearSolver& solver,
+         NewtonOptions opt);
 
   /// Solves eq. 20 for u1 given (u0, V0) at t_n; u1 holds the start guess on entry.
-  NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1);
+  /// Newton from the start iterate u1 (projected by the hooks). r_ref > 0: a warm start (the
+  /// step solved again from its last solution): the relative tolerance refers to r_ref, the
+  /// first residual of the step's first solve, and u1 may be accepted as it is.
+  NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1, double r_ref = 0);
 
   /// Constraints that change inside Newton (contact); null: only the fixed elimination.
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
@@ -56,7 +58,7 @@ class Newton {
   const Vector& last_residual() const { return *g_; }
 
  private:
-  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1);
+  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1, double r_ref);
   double linear_tolerance(const std::vector<double>& r, double floor) const;
   /// C r_k^2 with C = r_k / r_{k-1}^2 (or the last step's); < 0 when there is no estimate.
   double predicted_next(const std::vector<double>& r) const;

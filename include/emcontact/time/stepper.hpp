@@ -4,7 +4,6 @@
 // Newton. A step whose Newton fails is retried with dt/2 (up to `max step cuts` times); dt
 // doubles back toward the nominal dt after `grow after` good steps.
 #include <Teuchos_ParameterList.hpp>
-
 #include <array>
 #include <memory>
 #include <string>
@@ -25,6 +24,11 @@ struct State {
   int good_steps = 0;  ///< accepted steps since the last change of dt
   std::vector<contact::Active> active;  ///< my active slave nodes at t_n (§6.1)
   std::vector<double> normal_force;     ///< their f_N at the accepted step (§4)
+  /// Every node of mine active at the accepted solve of the last step (the monitors'
+  /// active_contacts), with its f_N and whether it stays active (1) or is released at the end
+  /// of the step (2: pinned in tension, or off its master; §6.4-§6.5).
+  std::vector<int> contact_nodes, contact_status;
+  std::vector<double> contact_force;
   Teuchos::RCP<Vector> last_increment;  ///< u_n - u_{n-1}, for the predictor (null at start)
   double last_h = 0;                    ///< the step size of that increment
   int last_iterations = 0;              ///< Newton iterations of the last accepted solve

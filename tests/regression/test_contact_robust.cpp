@@ -1,0 +1,260 @@
+// Contact that never sinks or glues (docs/THEORY.md §6.3-§6.6): flush faces of equal size,
+// slave nodes on master edges and vertices, a stack at rest, a block crossing a joint. Every
+// accepted step is checked against a brute-force penetration depth (the slave nodes against the
+// face planes of the convex master body, independent of the contact search), and each
+// head-on impact against the same impact with an oversized master face.
+#include <gtest/gtest.h>
+
+#include <Teuchos_CommHelpers.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "body_momenta.hpp"
+#include "emcontact/app/simulation.hpp"
+#include "emcontact/contact/pairs.hpp"
+#include "emcontact/mesh/body_mesh.hpp"
+#include "kernels/facet.hpp"
+
+using emc::testing::body_momenta;
+
+namespace {
+
+/// The deepest penetration (>= 0) of the pair's slave nodes into the master body in
+/// configuration x: a deformable master (a box here, convex) by the largest signed distance to
+/// its boundary's facet planes (inside when all are negative), a rigid surface by the gap to
+/// the facet whose CPP is inside.
+double penetration(const emc::app::Simulation& sim, const emc::contact::Pair& p,
+                   const std::vector<double>& x) {
+  const auto& m = sim.model;
+  const auto& mb = m.bodies[p.master_body];
+  std::vector<std::array<int, 3>> facets;
+  if (mb.rigid) {
+    facets = p.facets;
+  } else {
+    for (const auto& t : emc::mesh::boundary_triangles(mb.mesh))
+      facets.push_back({mb.node_begin + t[0], mb.node_begin + t[1], mb.node_begin + t[2]});
+  }
+  double deepest = 0;
+  for (int s : p.slaves) {
+    double worst = -1e300, rigid_gap = 0;
+    for (const auto& f : facets) {
+      double xm[3][3], xi[2], gap;
+      for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i) xm[a][i] = x[3 * f[a] + i];
+      if (!emc::kernels::facet_cpp(&x[3 * s], xm, xi, gap)) continue;
+      if (mb.rigid) {
+        if (emc::kernels::facet_outside(xi) <= 1e-12) rigid_gap = std::min(rigid_gap, gap);
+      } else {
+        worst = std::max(worst, gap);
+      }
+    }
+    deepest = std::max(deepest, mb.rigid ? -rigid_gap : -worst);
+  }
+  return deepest;
+}
+
+/// x of each body's node centroid and z of body 1's (collective).
+void centroids(const emc::app::Simulation& sim, std::vector<double>& xc, double& z1) {
+  const auto x = emc::contact::positions(sim.model, sim.contact->replicate(*sim.state.u));
+  xc.assign(sim.model.bodies.size(), 0.0);
+  for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
+    const auto& body = sim.model.bodies[b];
+    if (body.rigid || body.node_end <= body.node_begin) continue;
+    double sx = 0, sz = 0;
+    for (int n = body.node_begin; n < body.node_end; ++n) {
+      sx += x[3 * n];
+      sz += x[3 * n + 2];
+    }
+    xc[b] = sx / (body.node_end - body.node_begin);
+    if (b == 1) z1 = sz / (body.node_end - body.node_begin);
+  }
+}
+
+struct CaseRun {
+  int first = -1, last = -1;  ///< first and last step with an active node
+  double depth = 0;           ///< deepest penetration over the run (brute force)
+  double dE = 0;  ///< max |E - E0| / scale, scale = max(|E0|, the largest K + U + |P| of the run)
+  double newton = 0;   ///< Newton iterations per step
+  int tension = 0;     ///< steps accepted with f_N < 0 and no re-activated node
+  int changes = 0;     ///< steps whose active count differs from the step before
+  int unreported = 0;  ///< steps whose field-output contact nodes differ from the count
+  std::vector<std::array<double, 3>> p0, p;  ///< body momenta at the start and the end
+  std::vector<double> com0, com;             ///< x of each body's node centroid, start and end
+  double top_z0 = 0, top_z = 0;              ///< z of body 1's node centroid, start and end
+  long steps = 0;
+};
+
+CaseRun run_case(const std::string& xml, std::vector<std::string> sets) {
+  emc::app::Options o;
+  o.input = std::string(EMC_TEST_DIR) + "/" + xml;
+  o.overrides = std::move(sets);
+  auto sim = emc::app::setup(o, Tpetra::getDefaultComm());
+  CaseRun r;
+  r.p0 = body_momenta(*sim);
+  centroids(*sim, r.com0, r.top_z0);
+  const auto m0 = sim->disc->monitors(*sim->state.u, *sim->state.V);
+  const double E0 = m0.kinetic + m0.elastic + m0.potential;
+  long its = 0;
+  int last_active = 0;
+  double dE_abs = 0, scale = std::fabs(E0);
+  while (!sim->stepper->finished()) {
+    const auto rep = sim->stepper->advance();
+    const long n = sim->state.step;
+    its += rep.newton_iterations;
+    if (rep.contact.active > 0) {
+      if (r.first < 0) r.first = n;
+      r.last = n;
+    }
+    r.changes += rep.contact.active != last_active;
+    int mine = static_cast<int>(sim->state.contact_nodes.size()), all = 0;  // what fields show
+    Teuchos::reduceAll(*sim->disc->comm(), Teuchos::REDUCE_SUM, 1, &mine, &all);
+    r.unreported += all != rep.contact.active;
+    last_active = rep.contact.active;
+    r.tension += rep.contact.normal_force_min < 0 && rep.contact.reactivated == 0;
+    const auto x = emc::contact::positions(sim->model, sim->contact->replicate(*sim->state.u));
+    for (const auto& p : sim->contact->pairs())
+      r.depth = std::max(r.depth, penetration(*sim, p, x));
+    const auto m = sim->disc->monitors(*sim->state.u, *sim->state.V);
+    dE_abs = std::max(dE_abs, std::fabs(m.kinetic + m.elastic + m.potential - E0));
+    scale = std::max(scale, m.kinetic + m.elastic + std::fabs(m.potential));
+  }
+  r.dE = dE_abs / scale;
+  r.steps = sim->state.step;
+  centroids(*sim, r.com, r.top_z);
+  r.newton = double(its) / r.steps;
+  r.p = body_momenta(*sim);
+  return r;
+}
+
+void print(const char* name, const CaseRun& r) {
+  if (Tpetra::getDefaultComm()->getRank() != 0) return;
+  std::printf(
+      "%s: contact steps %d..%d, depth %.3e, E %.2e, Newton %.2f/step, tension steps %d, "
+      "active-count changes %d, pz(A) %.5f -> %.5f\n",
+      name, r.first, r.last, r.depth, r.dE, r.newton, r.tension, r.changes, r.p0[0][2], r.p[0][2]);
+}
+
+/// The bar B of bars.xml with its end face 2% wider on each side (1.04 times the area) and its
+/// young and density divided by 1.04 (the same wave speed and impedance: the same 1D impact),
+/// meshed at 0.52 (two elements across, as the slave).
+std::vector<std::string> oversized(std::vector<std::string> sets) {
+  sets.insert(sets.end(), {"Bodies/B/Mesh/lower corner={-0.02, -0.02, 4.1}",
+                           "Bodies/B/Mesh/upper corner={1.02, 1.02, 8.1}",
+                           "Bodies/B/Mesh/size=0.52", "Bodies/B/Material/young=0.96153846153846",
+                           "Bodies/B/Material/density=0.96153846153846"});
+  return sets;
+}
+
+}  // namespace
+
+// Two equal bars end face to end face (bars.xml): with the whole body B or its end face as
+// master, both contact laws, the impact matches the oversized-master control: the same first
+// and last contact step (within one), the same rebound (momentum of A within 2% of the
+// exchange), Newton iterations within 20%; no slave node deeper than the closing speed times
+// dt at any step; no tension beyond the bounded re-activation; E to 1e-10.
+class EqualBars : public ::testing::TestWithParam<std::tuple<const char*, const char*>> {};
+TEST_P(EqualBars, MatchTheOversizedMaster) {
+  const std::string type = std::get<0>(GetParam()), master = std::get<1>(GetParam());
+  const std::vector<std::string> sets = {"Contact/A on B/type=" + type,
+                                         "Contact/A on B/master=" + master};
+  const CaseRun eq = run_case("bars.xml", sets);
+  const CaseRun big = run_case(
+      "bars.xml", oversized({"Contact/A on B/type=" + type, "Contact/A on B/master=B/zmin"}));
+  print(("equal " + type + " " + master).c_str(), eq);
+  print(("oversized " + type).c_str(), big);
+  const double bound = 0.02 * 0.1, exchange = std::fabs(eq.p0[0][2] - eq.p0[1][2]);
+  EXPECT_LE(eq.depth, bound);
+  EXPECT_LE(big.depth, bound);
+  EXPECT_NEAR(eq.first, big.first, 1);
+  EXPECT_NEAR(eq.last, big.last, 1);
+  EXPECT_NEAR(eq.p[0][2], big.p[0][2], 0.02 * exchange);
+  EXPECT_LT(eq.p[0][2], 0);  // A rebounds
+  // Newton within 20% of the control on 1 rank; on 2 ranks round-off moves some activations by
+  // a step, and the edge nodes' chatter (a node activated while approaching has its normal
+  // velocity reflected, is in tension the next step and released: issue 19's closure is the
+  // cure) costs more re-solves there: 25%
+  const double newton_bound = Tpetra::getDefaultComm()->getSize() == 1 ? 1.2 : 1.25;
+  EXPECT_LE(eq.newton, newton_bound * big.newton);
+  EXPECT_EQ(eq.tension, 0);
+  EXPECT_EQ(eq.unreported, 0);  // the field output covers the nodes the monitors count
+  EXPECT_LT(eq.dE, 1e-10);
+  EXPECT_LT(big.dE, 1e-10);
+}
+INSTANTIATE_TEST_SUITE_P(Robust, EqualBars,
+                         ::testing::Combine(::testing::Values("frictionless", "full stick"),
+                                            ::testing::Values("B", "B/zmin")));
+
+// A bar hitting a rigid square of exactly its end face's size, against a square twice as wide:
+// the same contact steps and rebound, no penetration beyond the closing speed times dt.
+class BarOnWall : public ::testing::TestWithParam<const char*> {};
+TEST_P(BarOnWall, MatchesTheWideWall) {
+  auto wall = [&](const char* half) {
+    return std::vector<std::string>{"Bodies/B/Mesh/type=plane",
+                                    "Bodies/B/Mesh/center={0.5, 0.5, 4.1}",
+                                    "Bodies/B/Mesh/axis={0, 0, -1}",
+                                    std::string("Bodies/B/Mesh/half width=") + half,
+                                    "Bodies/B/Mesh/size=0.5",
+                                    "Bodies/B/Initial/velocity={0, 0, 0}",
+                                    "Time/end=20",
+                                    std::string("Contact/A on B/type=") + GetParam()};
+  };
+  const CaseRun eq = run_case("bars.xml", wall("0.5")), big = run_case("bars.xml", wall("1.0"));
+  print("bar on equal wall", eq);
+  print("bar on wide wall", big);
+  EXPECT_LE(eq.depth, 0.01 * 0.1);
+  EXPECT_NEAR(eq.first, big.first, 1);
+  EXPECT_NEAR(eq.last, big.last, 1);
+  EXPECT_NEAR(eq.p[0][2], big.p[0][2], 0.02 * std::fabs(eq.p0[0][2]));
+  EXPECT_LT(eq.p[0][2], 0);
+  EXPECT_LE(eq.newton, 1.2 * big.newton);
+  EXPECT_EQ(eq.tension, 0);
+  EXPECT_LT(eq.dE, 1e-10);
+}
+INSTANTIATE_TEST_SUITE_P(Robust, BarOnWall, ::testing::Values("frictionless", "full stick"));
+
+// A cube stacked on a cube of the same size, the lower one on a rigid square of its size, under
+// gravity from rest (stack.xml), against the same stack on a lower block 1.5 times wider and a
+// wider square: no node sinks (deeper than g dt^2, what one step of free fall brings), the
+// stack does not creep (the top cube's height changes by less than its elastic compression,
+// rho g H / E = 1e-3), and the active set changes no more often than on the oversized master.
+// Both start with gravity suddenly applied and ring; a node whose normal velocity the
+// constraint reflects (§6.4) is released and caught again in both.
+class Stack : public ::testing::TestWithParam<const char*> {};
+TEST_P(Stack, StaysAtRestLikeTheOversizedStack) {
+  // 1000 steps of full stick on 1 rank; shorter runs otherwise (the same code paths)
+  const bool long_run =
+      Tpetra::getDefaultComm()->getSize() == 1 && GetParam() == std::string("full stick");
+  const std::string end = long_run ? "Time/end=10" : "Time/end=3";
+  const std::vector<std::string> sets = {end, std::string("Contact/top on low/type=") + GetParam()};
+  auto wide = sets;
+  wide.insert(wide.end(), {"Bodies/low/Mesh/lower corner={-0.25, -0.25, 0}",
+                           "Bodies/low/Mesh/upper corner={1.25, 1.25, 1}",
+                           "Bodies/ground/Mesh/half width=0.75"});
+  const CaseRun eq = run_case("stack.xml", sets), big = run_case("stack.xml", wide);
+  print("stack", eq);
+  print("stack on a wide block", big);
+  EXPECT_LE(eq.depth, 9.81 * 0.01 * 0.01);
+  EXPECT_LE(big.depth, 9.81 * 0.01 * 0.01);
+  EXPECT_LT(std::fabs(eq.top_z - eq.top_z0), 1e-3);
+  EXPECT_LE(eq.changes, 1.5 * big.changes + 10);
+  EXPECT_LT(eq.dE, 1e-10);
+}
+INSTANTIATE_TEST_SUITE_P(Robust, Stack, ::testing::Values("full stick", "frictionless"));
+
+// A block sliding (frictionless, under gravity) across the joint between two flush blocks
+// clamped at their bottoms (joint.xml): it crosses without snagging (its horizontal momentum
+// stays within 2% of the start: only the tilt of the deforming top faces acts along x) and
+// without sinking (no node deeper than g dt^2).
+TEST(Robust, SlidesAcrossAFlushJoint) {
+  const CaseRun r = run_case("joint.xml", {});
+  print("joint", r);
+  const double px0 = r.p0[2][0], px = r.p[2][0];
+  if (Tpetra::getDefaultComm()->getRank() == 0)
+    std::printf("slider px %.6f -> %.6f, x of its centre %.4f -> %.4f\n", px0, px, r.com0[2],
+                r.com[2]);
+  EXPECT_GT(r.com[2], 1.1);  // its centre has crossed the joint at x = 1 (it starts at 0.35)
+  EXPECT_NEAR(px, px0, 0.02 * px0);
+  EXPECT_LE(r.depth, 9.81 * 0.01 * 0.01);
+  EXPECT_LT(r.dE, 1e-10);
+}

@@ -1,0 +1,171 @@
+// Activation rule of docs/THEORY.md §6.3 on hand-made geometry, without MPI: which master facet
+// a slave node enters over a step, near the edges and vertices of a master cube, and the
+// clamped CPP against a brute-force closest point.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "emcontact/contact/detection.hpp"
+#include "kernels/facet.hpp"
+
+using emc::contact::entered_facet;
+using emc::contact::EntryRule;
+using emc::contact::FacetGrid;
+using emc::contact::Hit;
+using emc::contact::Pair;
+
+namespace {
+
+/// The unit cube [x0, x0 + 1] x [0, 1] x [0, 1] as 12 outward triangles; the slave node is
+/// node 8 (its positions at t_n and t_{n+1} are set by the test).
+struct Cube {
+  Pair pair;
+  std::vector<double> x0, x1;
+  explicit Cube(double ox = 0) {
+    for (int k = 0; k < 8; ++k)
+      x0.insert(x0.end(), {ox + (k & 1), double(k >> 1 & 1), double(k >> 2)});
+    x0.insert(x0.end(), {0, 0, 0});
+    // each face as two triangles, counter-clockwise seen from outside
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) {
+      pair.facets.push_back({q[0], q[1], q[2]});
+      pair.facets.push_back({q[0], q[2], q[3]});
+    }
+    pair.slaves = {8};
+    pair.dmax = 0.5;
+    pair.edge = 1;
+    x1 = x0;
+  }
+  Hit enter(const double y0[3], const double y1[3], const double ns[3]) {
+    for (int i = 0; i < 3; ++i) {
+      x0[24 + i] = y0[i];
+      x1[24 + i] = y1[i];
+    }
+    const FacetGrid grid(pair.facets, x1, pair.dmax);
+    return entered_facet(grid, pair, x0, x1, 8, ns, emc::contact::entry_rule(pair));
+  }
+  /// The outward normal of facet f (in x0).
+  std::array<double, 3> normal(int f) const {
+    double xm[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) xm[a][i] = x0[3 * pair.facets[f][a] + i];
+    const auto fc = emc::kernels::facet(xm);
+    return {fc.n[0], fc.n[1], fc.n[2]};
+  }
+};
+
+const double r2 = 1 / std::sqrt(2.0);
+
+}  // namespace
+
+TEST(EnteredFacet, FaceInterior) {
+  Cube c;
+  const double y0[3] = {0.3, 0.6, 1.01}, y1[3] = {0.3, 0.6, 0.999}, ns[3] = {0, 0, -1};
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_NEAR(c.normal(h.facet)[2], 1, 1e-15);
+  EXPECT_NEAR(h.gap, -1e-3, 1e-12);
+}
+
+// Two equal bars end to end: the slave face's edge node lies 5e-4 beside the master's face
+// (in front of its side face) as it crosses the end face's plane. The end face takes it
+// through the edge extension; the side face does not face it (the slave's normal there is the
+// mean of its end and side faces). The closest valid facet of §2 alone is the side face at
+// g_N = +5e-4: the node was never caught and sank.
+TEST(EnteredFacet, EdgeNodeOfAnEqualFace) {
+  Cube c;
+  const double y0[3] = {1 + 5e-4, 0.5, -0.01}, y1[3] = {1 + 5e-4, 0.5, 1e-3};
+  const double ns[3] = {r2, 0, r2};
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_NEAR(c.normal(h.facet)[2], -1, 1e-15);
+  EXPECT_NEAR(h.gap, -1e-3, 1e-12);
+  const FacetGrid grid(c.pair.facets, c.x1, c.pair.dmax);
+  const Hit closest = grid.locate(y1);
+  EXPECT_NEAR(c.normal(closest.facet)[0], 1, 1e-15);
+  EXPECT_GT(closest.gap, 0);
+}
+
+// A node entering exactly at a vertex and exactly on an edge of the top face is caught.
+TEST(EnteredFacet, VertexAndEdge) {
+  Cube c;
+  const double ns[3] = {0, 0, -1};
+  for (const double* y : {(const double[3]){0, 0, 0}, (const double[3]){0.5, 1, 0}}) {
+    const double y0[3] = {y[0], y[1], 1.01}, y1[3] = {y[0], y[1], 0.998};
+    const Hit h = c.enter(y0, y1, ns);
+    ASSERT_GE(h.facet, 0);
+    EXPECT_NEAR(c.normal(h.facet)[2], 1, 1e-15);
+    EXPECT_NEAR(h.gap, -2e-3, 1e-12);
+  }
+}
+
+// The bottom rim node of a disk reaching the next disk's rim (three_disks): it lies in the
+// plane of the master's bottom face (g_N = -1e-10 there, its CPP inside once it has entered).
+// The rim face is the one crossed; the bottom face does not face the node.
+TEST(EnteredFacet, RimNodeInTheMastersFacePlane) {
+  Cube c;
+  const double y0[3] = {-0.01, 0.5, 1e-10}, y1[3] = {2e-3, 0.5, 1e-10}, ns[3] = {r2, 0, -r2};
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_NEAR(c.normal(h.facet)[0], -1, 1e-15);
+  EXPECT_NEAR(h.gap, -2e-3, 1e-12);
+}
+
+// A block sliding over the joint onto the next block (joint.xml): its leading edge node,
+// hovering 1e-4 above the top face, passes the side face's top edge. The side face would take
+// it through the edge extension (the node is 2e-2 behind its plane), but the node lies on the
+// top face: it passes over the edge, no snag.
+TEST(EnteredFacet, NoSnagOverAJoint) {
+  Cube c(1.0);
+  const double y0[3] = {0.99, 0.5, 1 + 1e-4}, y1[3] = {1.02, 0.5, 1 + 1e-4};
+  const double ns[3] = {r2, 0, -r2};
+  EXPECT_LT(c.enter(y0, y1, ns).facet, 0);
+  // dipping below the top face on the way, it enters the top face, not the side
+  const double y2[3] = {1.02, 0.5, 1 - 1e-4};
+  const Hit h = c.enter(y0, y2, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_NEAR(c.normal(h.facet)[2], 1, 1e-15);
+}
+
+// A node hovering over the top face near its edge, moving away from the edge: it is behind the
+// side face's plane and approaches it, but the side face does not face it and it never crossed
+// it; and a node already behind a face that moves out of it is left free.
+TEST(EnteredFacet, HoveringAndLeavingNodesAreNotCaught) {
+  Cube c;
+  const double ns[3] = {0, 0, -1};
+  const double y0[3] = {0.996, 0.5, 1 + 1e-4}, y1[3] = {0.99, 0.5, 1 + 1e-4};
+  EXPECT_LT(c.enter(y0, y1, ns).facet, 0);
+  const double z0[3] = {0.5, 0.5, 0.99}, z1[3] = {0.5, 0.5, 0.995};
+  EXPECT_LT(c.enter(z0, z1, ns).facet, 0);
+}
+
+// facet_clamp gives the closest point of the triangle (brute force over a fine sampling).
+TEST(FacetClamp, MatchesBruteForce) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> d(-1, 1);
+  for (int t = 0; t < 50; ++t) {
+    double xm[3][3], y[3], xi[2], gap;
+    for (auto& p : xm)
+      for (double& v : p) v = d(rng);
+    for (double& v : y) v = 1.5 * d(rng);
+    const auto m = emc::kernels::facet_metric(xm);
+    ASSERT_TRUE(emc::kernels::facet_cpp(y, xm, m, xi, gap));
+    emc::kernels::facet_clamp(m, xi);
+    auto dist = [&](double a, double b) {
+      double s = 0;
+      for (int i = 0; i < 3; ++i) {
+        const double p = (1 - a - b) * xm[0][i] + a * xm[1][i] + b * xm[2][i];
+        s += (y[i] - p) * (y[i] - p);
+      }
+      return s;
+    };
+    double best = 1e300;
+    const int n = 400;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) best = std::min(best, dist(double(i) / n, double(j) / n));
+    EXPECT_LE(emc::kernels::facet_outside(xi), 1e-15);
+    EXPECT_LE(dist(xi[0], xi[1]), best + 1e-12);
+  }
+}
