@@ -7,6 +7,11 @@
 namespace emc::output {
 namespace {
 
+/// The name HDF5 gets for the in-memory file. H5Fcreate first tries to open an existing file of
+/// that name (read-write) to see if it is open already; a path under /dev/null can never be
+/// opened, so nothing on disk (e.g. a link planted at `path`) is ever touched.
+constexpr const char* kMemoryName = "/dev/null/emcontact-in-memory.h5";
+
 /// The growth step of the in-memory file image.
 constexpr std::size_t kImageIncrement = std::size_t(1) << 20;
 
@@ -40,7 +45,7 @@ std::string file_image(hid_t file, const std::string& path) {
 
 void write_hdf5_file(const std::string& path, const std::function<void(hid_t)>& fill) {
   const hid_t fapl = in_memory_access(path);
-  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  const hid_t file = H5Fcreate(kMemoryName, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   H5Pclose(fapl);
   if (file < 0) fail(path, "HDF5 cannot create the file in memory");
   std::string image;
