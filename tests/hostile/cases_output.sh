@@ -194,3 +194,14 @@ hostile_hdf5_error_stack_not_printed() {
   expect_short_err 1 && expect_err "junk\.h5" || return 1
   if grep -q "HDF5-DIAG" last.err last.out; then echo "HDF5 error stack printed"; return 1; fi
 }
+
+# A monitors.csv that cannot be rewritten (disk full) keeps its previous complete version and
+# stops the run in one line naming it, exit 1 (already so before issue 18: a guard).
+hostile_failed_monitors_write_stops_cleanly() {
+  emc_good_input in.xml
+  expect_exit 1 "${FILE_LIMIT[@]}" 1 "$EMC" in.xml "${EMC_QUIET[@]}" --set Output/every=0 \
+    "${EMC_TUMBLE[@]}" --set Time/end=0.1 --output out || return 1
+  expect_short_err 1 && expect_err "monitors\.csv" || return 1
+  if ls out | grep -q '\.tmp\.'; then echo "temporary left: $(ls out)"; return 1; fi
+  [ "$(tail -c 1 out/monitors.csv | od -An -c | tr -d ' ')" = '\n' ] || { echo "monitors.csv cut"; return 1; }
+}
