@@ -13,7 +13,7 @@ from report_util import ENV, ROOT, replace_section  # noqa: E402
 
 
 def run(build, xml, out, ranks=1, sets=()):
-    cmd = [os.path.join(build, 'bin', 'emcontact'), xml, '--output', out, '--set', 'Output/progress=false']
+    cmd = [os.path.join(build, 'bin', 'emcontact'), xml, '--output', out, '--overwrite', '--set', 'Output/progress=false']
     for s in sets:
         cmd += ['--set', s]
     if ranks > 1:

@@ -25,7 +25,7 @@ def run(build, name, xml, reuse):
     out = os.path.join('out', name)
     info = {}
     if not reuse:
-        cmd = [os.path.join(build, 'bin', 'emcontact'), xml, '--output', out,
+        cmd = [os.path.join(build, 'bin', 'emcontact'), xml, '--output', out, '--overwrite',
                '--set', 'Output/progress=false', '--set', 'Output/plot=true']
         t0 = time.time()
         p = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)

@@ -33,7 +33,7 @@ def run(build, size, ranks, steps, phase, threads=None):
     cmd = ['/usr/bin/time', '-v']
     if ranks > 1:
         cmd += ['mpirun', '--oversubscribe', '--bind-to', 'none', '-np', str(ranks)]
-    cmd += [os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out,
+    cmd += [os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out, '--overwrite',
             '--set', 'Bodies/ball/Mesh/size=%s' % size, '--set', 'Time/end=%g' % (steps * 0.001),
             '--set', 'Output/every=0', '--set', 'Output/plot=false', '--set', 'Output/progress=false']
     cmd += PHASES[phase]

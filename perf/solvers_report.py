@@ -16,7 +16,7 @@ CHOICES = [('gmres', 'ilu'), ('gmres', 'schwarz'), ('gmres', 'muelu'), ('cg', 'i
 def run(build, size, ranks, typ, prec, steps):
     out = 'out/solver_%s_%s_%s_np%d' % (size, typ, prec, ranks)
     cmd = ([] if ranks == 1 else ['mpirun', '--oversubscribe', '-np', str(ranks)]) + [
-        os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out,
+        os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out, '--overwrite',
         '--set', 'Bodies/ball/Mesh/size=%s' % size, '--set', 'Time/end=%g' % (steps * 0.001),
         '--set', 'Solver/Linear/type=%s' % typ, '--set', 'Solver/Linear/preconditioner=%s' % prec,
         '--set', 'Output/every=0', '--set', 'Output/plot=false', '--set', 'Output/progress=false']

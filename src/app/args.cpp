@@ -7,12 +7,16 @@ namespace emc::app {
 
 std::string usage() {
   return "usage: emcontact INPUT.xml [--set Section/Sub/name=value ...] [--output DIR]\n"
-         "                 [--restart DIR/checkpoint.h5]\n"
-         "  --set     override any parameter of the input (repeatable), e.g. --set Time/end=0.5\n"
-         "  --output  write monitors.csv and the fields to DIR instead of Output/directory\n"
-         "  --restart continue from a checkpoint (Output/checkpoint every); the monitors of DIR\n"
-         "            up to its step are kept and the run goes on from there\n"
-         "Parameters are documented in inputs/README.md.";
+         "                 [--overwrite] [--restart CHECKPOINT_DIR/checkpoint.h5]\n"
+         "  --set       override any parameter of the input (repeatable), e.g. --set Time/end=0.5\n"
+         "  --output    write monitors.csv and the fields to DIR instead of Output/directory\n"
+         "  --overwrite let a new run replace the files of an earlier run in DIR (monitors.csv,\n"
+         "              checkpoint.h5, fields.xdmf, fields_*.h5, mesh.h5, energies.png); without\n"
+         "              it a DIR holding any of them is refused. Other files are never touched\n"
+         "  --restart   continue from a checkpoint (Output/checkpoint every): the monitors of its\n"
+         "              directory up to its step are kept and the run goes on from there, in that\n"
+         "              directory, or in a new DIR given by --output (a branch)\n"
+         "One run at a time per DIR (DIR/.emcontact.lock). Parameters: inputs/README.md.";
 }
 
 Options parse_args(int argc, char** argv) {
@@ -21,9 +25,18 @@ Options parse_args(int argc, char** argv) {
     const std::string a = argv[i];
     auto value = [&](const std::string& flag) -> std::string {
       const auto eq = a.find('=');
-      if (eq != std::string::npos) return a.substr(eq + 1);
-      if (i + 1 >= argc) throw InputError(flag + " needs a value\n" + usage());
-      return argv[++i];
+      std::string v;
+      if (eq != std::string::npos) {
+        v = a.substr(eq + 1);
+      } else {
+        if (i + 1 >= argc) throw InputError(flag + " needs a value\n" + usage());
+        v = argv[++i];
+      }
+      // an empty value (e.g. an unset shell variable) must not fall back to a default
+      if (v.empty())
+        throw InputError(flag + ": empty value; allowed: a non-empty " +
+                         (flag == "--set" ? "Section/name=value" : "path"));
+      return v;
     };
     if (a == "-h" || a == "--help") {
       o.help = true;
@@ -31,6 +44,8 @@ Options parse_args(int argc, char** argv) {
       o.overrides.push_back(value("--set"));
     } else if (a == "--output" || a.rfind("--output=", 0) == 0) {
       o.output_dir = value("--output");
+    } else if (a == "--overwrite") {
+      o.overwrite = true;
     } else if (a == "--restart" || a.rfind("--restart=", 0) == 0) {
       o.restart = value("--restart");
     } else if (!a.empty() && a[0] == '-') {
@@ -38,8 +53,7 @@ Options parse_args(int argc, char** argv) {
     } else if (o.input.empty()) {
       o.input = a;
     } else {
-      throw InputError("more than one input file (\"" + o.input + "\", \"" + a + "\")\n" +
-                       usage());
+      throw InputError("more than one input file (\"" + o.input + "\", \"" + a + "\")\n" + usage());
     }
   }
   if (o.input.empty() && !o.help) throw InputError("no input file given\n" + usage());

@@ -7,9 +7,11 @@
 
 #include "emcontact/app/run.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/output/hdf5_file.hpp"
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard scope(&argc, &argv);
+  emc::output::silence_hdf5_errors();  // errors are reported in one line each
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
   try {

@@ -12,6 +12,8 @@
 #include <memory>
 
 #include "emcontact/app/meshes.hpp"
+#include "emcontact/app/output_dir.hpp"
+#include "emcontact/app/plot.hpp"
 #include "emcontact/app/progress.hpp"
 #include "emcontact/app/restart.hpp"
 #include "emcontact/app/root_gather.hpp"
@@ -139,15 +141,6 @@ Writers make_writers(const fem::Discretization& disc, const std::string& dir, in
   return w;
 }
 
-/// Output/plot: energies, L and J against time next to monitors.csv (a warning on failure).
-void plot_monitors(const std::string& dir) {
-  const std::string cmd = std::string("/usr/bin/python3 '") + EMC_PLOT_SCRIPT + "' '" + dir +
-                          "/monitors.csv' --out '" + dir + "/energies.png' > /dev/null 2>&1";
-  if (std::system(cmd.c_str()) != 0)
-    std::fprintf(stderr, "warning: could not plot %s/monitors.csv (%s)\n", dir.c_str(),
-                 cmd.c_str());
-}
-
 /// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
 /// at rest under a load) the largest K + W + |Pi| so far.
 /// Set by SIGTERM: the time loop writes a checkpoint after the step and stops.
@@ -244,7 +237,8 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
 
   const auto& out = P.sublist("Output");
   Summary sum;
-  sum.output_dir = opt.output_dir.empty() ? out.get<std::string>("directory") : opt.output_dir;
+  const OutputDirectory output_dir(opt, out, *comm);  // locked until the run returns
+  sum.output_dir = output_dir.path();
   Writers w = make_writers(disc, sum.output_dir, out.get<int>("every"));
   const bool root = comm->getRank() == 0;
   Progress progress(root && out.get<bool>("progress"), stepper.end());
@@ -254,10 +248,12 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   comm->barrier();
   sum.setup_seconds = clock.totalElapsedTime(true);
   auto row0 = monitor_row(disc, state, time::StepReport{});
-  if (!opt.restart.empty())
-    row0 = restart(*sim, *w.dofs, opt.restart, sum.output_dir, w);
-  else if (root)
+  if (!opt.restart.empty()) {
+    row0 = restart(*sim, *w.dofs, opt.restart, output_dir.restart_source(), w);
+    if (w.fields) w.fields->resume(state.step);
+  } else if (root) {
     w.monitors->append(row0);
+  }
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.get<int>("checkpoint every");

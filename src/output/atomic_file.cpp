@@ -1,4 +1,4 @@
-// Atomic file replacement (temp file + fsync + rename) and `mkdir -p`.
+// Atomic file replacement (a safely created temp file + fsync + rename) and `mkdir -p`.
 #include "emcontact/output/atomic_file.hpp"
 
 #include <fcntl.h>
@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "emcontact/error.hpp"
+#include "emcontact/output/safe_temp.hpp"
 
 namespace emc::output {
 namespace {
@@ -51,28 +52,22 @@ void sync_directory(const std::string& dir) {
   ::close(fd);
 }
 
-/// The temporary name used for `path`: same directory, so the rename stays on one file system.
-std::string temp_name(const std::string& path) {
-  return path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-}
-
 }  // namespace
 
 void atomic_write(const std::string& path, const std::string& content) {
-  const std::string tmp = temp_name(path);
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw os_error("cannot create", path, errno);
-  int err = write_all(fd, content);
-  if (err == 0 && ::fsync(fd) != 0) err = errno;
-  if (::close(fd) != 0 && err == 0) err = errno;
+  const TempFile tmp = create_temp(path);
+  int err = write_all(tmp.fd, content);
+  if (err == 0 && ::fsync(tmp.fd) != 0) err = errno;
+  if (::close(tmp.fd) != 0 && err == 0) err = errno;
   if (err != 0) {
-    ::unlink(tmp.c_str());
+    ::unlink(tmp.name.c_str());
     throw os_error("cannot write", path, err);
   }
-  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+  // rename replaces a link planted at `path` itself, never the file it points to
+  if (::rename(tmp.name.c_str(), path.c_str()) != 0) {
     err = errno;
-    ::unlink(tmp.c_str());
-    throw os_error("cannot rename '" + tmp + "' to", path, err);
+    ::unlink(tmp.name.c_str());
+    throw os_error("cannot rename '" + tmp.name + "' to", path, err);
   }
   sync_directory(parent_directory(path));
 }

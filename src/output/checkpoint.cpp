@@ -4,7 +4,7 @@
 #include <unistd.h>
 
 #include "emcontact/error.hpp"
-#include "emcontact/output/atomic_file.hpp"
+#include "emcontact/output/hdf5_file.hpp"
 
 namespace emc::output {
 
@@ -14,13 +14,14 @@ void write_vector(hid_t file, const char* name, const std::vector<double>& v,
                   const std::string& path) {
   const hsize_t n = v.size();
   const hid_t space = H5Screate_simple(1, &n, nullptr);
-  const hid_t set = H5Dcreate2(file, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT,
-                               H5P_DEFAULT);
-  const herr_t st = set < 0 ? -1
-                            : H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                                       v.empty() ? nullptr : v.data());
-  if (set >= 0) H5Dclose(set);
-  H5Sclose(space);
+  const hid_t set = space < 0 ? -1
+                              : H5Dcreate2(file, name, H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                                           H5P_DEFAULT, H5P_DEFAULT);
+  herr_t st = set < 0 ? -1
+                      : H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                                 v.empty() ? nullptr : v.data());
+  if (set >= 0 && H5Dclose(set) < 0) st = -1;
+  if (space >= 0) H5Sclose(space);
   if (st < 0) throw Error(path + ": cannot write the checkpoint dataset " + name);
 }
 
@@ -42,7 +43,7 @@ std::vector<double> read_vector(hid_t file, const char* name, const std::string&
 }  // namespace
 
 std::vector<double> Checkpoint::scalars() const {
-  return {double(step), t, dt, last_h, double(good_steps), double(last_iterations),
+  return {double(step),      t, dt, last_h, double(good_steps), double(last_iterations),
           newton_contraction};
 }
 
@@ -58,23 +59,15 @@ void Checkpoint::set_scalars(const std::vector<double>& s, const std::string& pa
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
-  const std::string tmp = path + ".tmp." + std::to_string(getpid());
-  const hid_t file = H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file < 0) throw Error(path + ": cannot create the checkpoint file");
-  try {
+  // built in memory, then written atomically: a failed write keeps the previous checkpoint
+  write_hdf5_file(path, [&](hid_t file) {
     write_vector(file, "scalars", c.scalars(), path);
     write_vector(file, "u", c.u, path);
     write_vector(file, "V", c.V, path);
     write_vector(file, "last_increment", c.last_increment, path);
     write_vector(file, "active", c.active, path);
     write_vector(file, "normal_force", c.normal_force, path);
-  } catch (...) {
-    H5Fclose(file);
-    unlink(tmp.c_str());
-    throw;
-  }
-  H5Fclose(file);
-  atomic_commit(tmp, path);
+  });
 }
 
 Checkpoint read_checkpoint(const std::string& path) {

@@ -2,16 +2,21 @@
 // ParaView opens (a temporal collection of tetrahedral grids sharing mesh.h5).
 #include "emcontact/output/fields.hpp"
 
+#include <dirent.h>
 #include <hdf5.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <utility>
 
 #include "emcontact/error.hpp"
 #include "emcontact/output/atomic_file.hpp"
+#include "emcontact/output/hdf5_file.hpp"
 
 namespace emc::output {
 namespace {
@@ -104,21 +109,12 @@ void write_dataset(hid_t file, const std::string& path, const DatasetSpec& d) {
   if (!set.reset()) fail(path, std::string("closing dataset ") + d.name);
 }
 
-/// Writes `datasets` into a new HDF5 file `path`, atomically: a temp file in the same directory,
-/// closed, then fsync'ed and renamed over `path` by atomic_commit.
+/// Writes `datasets` into a new HDF5 file `path`, atomically (built in memory, then renamed).
 void write_hdf5_atomically(const std::string& path, const std::vector<DatasetSpec>& datasets) {
   SilenceHdf5Errors quiet;
-  const std::string tmp = path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-  try {
-    Handle file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-    if (!file.valid()) fail(path, "creating '" + tmp + "'");
-    for (const DatasetSpec& d : datasets) write_dataset(file.get(), path, d);
-    if (!file.reset()) fail(path, "closing '" + tmp + "'");
-  } catch (...) {
-    ::unlink(tmp.c_str());
-    throw;
-  }
-  atomic_commit(tmp, path);
+  write_hdf5_file(path, [&](hid_t file) {
+    for (const DatasetSpec& d : datasets) write_dataset(file, path, d);
+  });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -151,6 +147,47 @@ std::string attribute(const char* name, const char* type, const char* center,
                       const std::string& item) {
   return std::string("        <Attribute Name=\"") + name + "\" AttributeType=\"" + type +
          "\" Center=\"" + center + "\">\n" + item + "        </Attribute>\n";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frames already in the directory (restart)
+
+/// The step of a frame file named exactly as frame_file_name(step), or -1.
+long frame_step(const std::string& name) {
+  const std::string prefix = "fields_", suffix = ".h5";
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0)
+    return -1;
+  const char* first = name.data() + prefix.size();
+  const char* last = name.data() + name.size() - suffix.size();
+  long step = -1;
+  const auto res = std::from_chars(first, last, step);
+  if (res.ec != std::errc() || res.ptr != last || step < 0) return -1;
+  return frame_file_name(step) == name ? step : -1;
+}
+
+/// Reads the time stored in the frame file `path`; false if it is not a readable frame (a
+/// regular file only: a FIFO would block the open).
+bool read_frame_time(const std::string& path, double& time) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+  SilenceHdf5Errors quiet;
+  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (!file.valid()) return false;
+  Handle set(H5Dopen2(file.get(), "/time", H5P_DEFAULT), H5Dclose);
+  if (!set.valid()) return false;
+  Handle space(H5Dget_space(set.get()), H5Sclose);
+  if (!space.valid() || H5Sget_simple_extent_npoints(space.get()) != 1) return false;
+  return H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &time) >= 0;
+}
+
+/// The names of the entries of `dir`; throws emc::Error naming it.
+std::vector<std::string> directory_entries(const std::string& dir) {
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) throw Error("cannot list '" + dir + "': " + std::strerror(errno));
+  std::vector<std::string> names;
+  while (const dirent* e = ::readdir(d)) names.emplace_back(e->d_name);
+  ::closedir(d);
+  return names;
 }
 
 }  // namespace
@@ -206,6 +243,24 @@ void FieldWriter::write(const FieldFrame& f) {
   } else {
     frames_.emplace_back(f.step, f.time);
   }
+  write_xdmf();
+}
+
+void FieldWriter::resume(long step) {
+  frames_.clear();
+  for (const std::string& name : directory_entries(dir_)) {
+    const long s = frame_step(name);
+    if (s < 0) continue;
+    const std::string path = dir_ + "/" + name;
+    if (s > step) {  // written after the checkpoint by the earlier run: no longer valid
+      if (::unlink(path.c_str()) != 0 && errno != ENOENT)
+        throw Error("cannot remove '" + path + "': " + std::strerror(errno));
+      continue;
+    }
+    double time = 0;
+    if (read_frame_time(path, time)) frames_.emplace_back(s, time);
+  }
+  std::sort(frames_.begin(), frames_.end());
   write_xdmf();
 }
 

@@ -13,6 +13,7 @@ struct Options {
   std::vector<std::string> overrides;  ///< --set Section/Sub/name=value
   std::string output_dir;              ///< --output DIR (overrides Output/directory)
   std::string restart;                 ///< --restart FILE: continue from a checkpoint
+  bool overwrite = false;              ///< --overwrite: replace an earlier run's files in DIR
   bool help = false;
 };
 

@@ -24,6 +24,9 @@ class FieldWriter {
               const std::vector<int>& body_of_tet);
   /// Writes DIR/fields_<step>.h5 atomically, then rewrites DIR/fields.xdmf atomically.
   void write(const FieldFrame& f);
+  /// After a restart from `step`: lists the frames of DIR at steps <= `step` (their files
+  /// readable), removes the frame files after it (the earlier run's), rewrites fields.xdmf.
+  void resume(long step);
 
  private:
   std::string dir_;

@@ -1,0 +1,112 @@
+// The output directory's own files and its lock (see directory.hpp).
+#include "emcontact/output/directory.hpp"
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+#include "emcontact/error.hpp"
+
+namespace emc::output {
+namespace {
+
+/// fields_<digits>.h5, the frame files.
+bool is_frame_file(const std::string& name) {
+  const std::string prefix = "fields_", suffix = ".h5";
+  if (name.size() <= prefix.size() + suffix.size()) return false;
+  if (name.compare(0, prefix.size(), prefix) != 0) return false;
+  if (name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) return false;
+  const auto digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+bool is_owned(const std::string& name) {
+  for (const char* f : {"monitors.csv", "checkpoint.h5", "fields.xdmf", "mesh.h5", "energies.png"})
+    if (name == f) return true;
+  return is_frame_file(name);
+}
+
+/// `<owned name>.tmp.<anything>`: a temporary of ours left by a killed run.
+bool is_owned_temporary(const std::string& name) {
+  const std::size_t at = name.find(".tmp.");
+  return at != std::string::npos && is_owned(name.substr(0, at));
+}
+
+std::vector<std::string> entries(const std::string& dir) {
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) throw Error("cannot list '" + dir + "': " + std::strerror(errno));
+  std::vector<std::string> names;
+  while (const dirent* e = ::readdir(d)) names.emplace_back(e->d_name);
+  ::closedir(d);
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> owned_files(const std::string& dir) {
+  std::vector<std::string> owned;
+  for (const auto& name : entries(dir))
+    if (is_owned(name)) owned.push_back(name);
+  return owned;
+}
+
+void remove_owned_files(const std::string& dir) {
+  for (const auto& name : entries(dir)) {
+    if (!is_owned(name) && !is_owned_temporary(name)) continue;
+    const std::string path = dir + "/" + name;
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) continue;
+    if (::unlink(path.c_str()) != 0 && errno != ENOENT)
+      throw Error("--overwrite: cannot remove '" + path + "': " + std::strerror(errno));
+  }
+}
+
+DirectoryLock::DirectoryLock(const std::string& dir) {
+  const std::string path = dir + "/.emcontact.lock";
+  // O_NOFOLLOW: a link planted there is refused, never followed; O_NONBLOCK: a FIFO planted
+  // there does not block the open (and is refused below)
+  fd_ = ::open(path.c_str(), O_RDONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  if (fd_ < 0)
+    throw Error("cannot lock the output directory '" + dir + "': " + path + ": " +
+                std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    fd_ = -1;
+    throw Error("cannot lock the output directory '" + dir + "': " + path +
+                " is not a regular file");
+  }
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    ::close(fd_);
+    fd_ = -1;
+    if (err == EWOULDBLOCK)
+      throw Error("output directory '" + dir + "' is in use by another emcontact run (" + path +
+                  " is locked); wait for it or choose another --output");
+    throw Error("cannot lock the output directory '" + dir + "': " + std::strerror(err));
+  }
+}
+
+DirectoryLock::~DirectoryLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
+
+DirectoryLock::DirectoryLock(DirectoryLock&& o) noexcept : fd_(std::exchange(o.fd_, -1)) {}
+
+DirectoryLock& DirectoryLock::operator=(DirectoryLock&& o) noexcept {
+  if (this != &o) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = std::exchange(o.fd_, -1);
+  }
+  return *this;
+}
+
+}  // namespace emc::output
