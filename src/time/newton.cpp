@@ -1,11 +1,12 @@
 #include "emcontact/time/newton.hpp"
 
-#include "emcontact/time/timers.hpp"
-
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+
+#include "emcontact/time/interrupt.hpp"
+#include "emcontact/time/timers.hpp"
 
 namespace emc::time {
 
@@ -98,6 +99,7 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
   };
   bool with_matrix = true;
   for (int it = 0;; ++it) {
+    if (stop_requested(*disc_.comm())) throw Interrupted();  // SIGTERM within a long step
     const fem::AssemblyInfo info = assemble(with_matrix);
     if (!(info.min_detF > 0)) {
       char buf[160];

@@ -1,12 +1,11 @@
 #include "emcontact/time/stepper.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <set>
-
-#include <Teuchos_CommHelpers.hpp>
 
 #include "emcontact/error.hpp"
 #include "emcontact/time/timers.hpp"
@@ -33,7 +32,9 @@ Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Eli
   }
 }
 
-bool Stepper::finished() const { return s_.t >= end_ - 1e-9 * dt_; }
+bool Stepper::finished() const {
+  return s_.t >= end_ - 1e-9 * dt_;
+}
 
 // The active set's constraints for the next solve; a new P invalidates the preconditioner.
 void Stepper::apply(std::vector<contact::Active>& active) {
@@ -120,6 +121,18 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   return true;
 }
 
+// A step that cannot advance time (below the round-off of t, or not finite: a corrupt
+// state) would loop forever: stop instead.
+void Stepper::check_step_size(double h) const {
+  if (std::isfinite(h) && h > 0 && s_.t + h > s_.t) return;
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "step %ld at t = %.6g: the step size %.3g cannot advance time (it must be "
+                "finite, > 0 and above the round-off of t; Time/dt = %.3g)",
+                s_.step + 1, s_.t, h, dt_);
+  throw RunError(buf);
+}
+
 StepReport Stepper::advance() {
   StepReport rep;
   const Vector& u0 = *s_.u;
@@ -127,6 +140,7 @@ StepReport Stepper::advance() {
   newton_.set_contraction(s_.newton_contraction);
   for (;;) {
     const double h = std::min(s_.dt, end_ - s_.t);
+    check_step_size(h);
     if (solve_step(h, u1, rep)) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n
       s_.V->update(2.0 / h, u1, -2.0 / h, u0, -1.0);

@@ -40,3 +40,17 @@ expect_short_err() {
     return 1
   fi
 }
+
+# expect_exit_within SECONDS CODE CMD...: expect_exit with a shorter timeout (a hang shows as
+# exit 124 quickly).
+expect_exit_within() {
+  local secs=$1 want=$2
+  shift 2
+  local rc=0
+  timeout -k 5 "$secs" "$@" >last.out 2>last.err || rc=$?
+  if [ "$rc" -ne "$want" ]; then
+    echo "expected exit $want, got $rc (timeout ${secs} s) from: $*"
+    tail -20 last.out last.err
+    return 1
+  fi
+}
