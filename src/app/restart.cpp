@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <cstdio>
+#include <filesystem>
 
 #include "emcontact/app/checkpoint_check.hpp"
 #include "emcontact/error.hpp"
@@ -126,6 +127,25 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
     s.active.push_back(a);
     s.normal_force.push_back(c.normal_force.at(k / 5));
   }
+}
+
+std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path,
+                            long kept) {
+  const auto& s = sim.state;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "stopped by SIGTERM after step %ld (t = %.6g); ", s.step, s.t);
+  if (kept < 0 || kept == s.step) {
+    if (kept < 0) save_checkpoint(sim, dofs, path);
+    return buf + ("continue with --restart " + path);
+  }
+  return buf + ("continue with --restart " + path + " (step " + std::to_string(kept) +
+                ", on the checkpoint grid: steps " + std::to_string(kept + 1) + " to " +
+                std::to_string(s.step) + " are recomputed, identically)");
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return !a.empty() && std::filesystem::equivalent(a, b, ec) && !ec;
 }
 
 void check_monitor_steps(const std::vector<output::MonitorRow>& rows, const std::string& file) {

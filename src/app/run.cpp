@@ -252,13 +252,11 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.get<int>("checkpoint every");
   sigterm_stops_time_loop();
-  // SIGTERM (between steps or within one): a checkpoint of the last accepted step, then stop
+  // the step of DIR/checkpoint.h5 if this run wrote it or restarted from it, else -1
+  long kept = same_file(opt.restart, sum.output_dir + "/checkpoint.h5") ? state.step : -1;
   auto stop_on_sigterm = [&]() {
-    const std::string file = sum.output_dir + "/checkpoint.h5";
     if (root) w.monitors->flush(true);
-    save_checkpoint(*sim, *w.dofs, file);
-    throw RunError("stopped by SIGTERM after step " + std::to_string(state.step) + " (t = " +
-                   std::to_string(state.t) + "); continue with --restart " + file);
+    throw RunError(stop_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5", kept));
   };
   try {
     while (!stepper.finished()) {
@@ -285,6 +283,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         // --restart), never a checkpoint without its row (found by kill_and_restart)
         if (root) w.monitors->flush(true);
         save_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5");
+        kept = state.step;
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
       }
       progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);

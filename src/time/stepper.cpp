@@ -139,7 +139,11 @@ StepReport Stepper::advance() {
   Vector u1(u0.getMap());
   newton_.set_contraction(s_.newton_contraction);
   for (;;) {
-    const double h = std::min(s_.dt, end_ - s_.t);
+    // the last step is shortened to end at Time/end, unless only by round-off of the sum of
+    // the steps: then it is dt itself, as in a run with a later end (an extended run goes on
+    // exactly as that one)
+    const double rest = end_ - s_.t;
+    const double h = rest < s_.dt * (1 - 1e-9) ? rest : s_.dt;
     check_step_size(h);
     if (solve_step(h, u1, rep)) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n

@@ -205,8 +205,8 @@ PY
 hostile_checkpoint_of_another_model_refused() {
   emc_good_input in.xml
   "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
-  expect_exit_within 30 1 "$EMC" in.xml --set Bodies/block/Mesh/size=0.04 --set Time/end=0.05 \
-    --output ck --restart ck/checkpoint.h5
+  expect_exit_within 30 1 "$EMC" in.xml --set "Bodies/block/Mesh/upper corner={0.2, 0.1, 0.1}" \
+    --set Time/end=0.05 --output ck --restart ck/checkpoint.h5
   expect_err "written for another model"
   expect_short_err 1
   expect_exit_within 30 1 "$EMC" in.xml --set Bodies/block/Material/young=2e5 --set Time/end=0.05 \
@@ -216,8 +216,9 @@ hostile_checkpoint_of_another_model_refused() {
 
 hostile_checkpoint_other_contact_master_refused() {
   emc_contact_checkpoint
-  # the master body's mesh changes (the "ground"): same slave, other facets
-  expect_exit_within 30 1 "$EMC" in.xml --set Bodies/B/Mesh/size=0.09 --set Time/end=0.08 \
+  # the master body moves (the "ground"): same sizes, same slave, other coordinates
+  expect_exit_within 30 1 "$EMC" in.xml --set "Bodies/B/Mesh/lower corner={0.22, 0.08, 0.05}" \
+    --set "Bodies/B/Mesh/upper corner={0.42, 0.28, 0.25}" --set Time/end=0.08 \
     --output ck --restart ck/checkpoint.h5
   expect_err "written for another model"
   expect_short_err 1
@@ -242,7 +243,9 @@ hostile_ifpack2_bad_value_one_line() {
 
 hostile_young_1e308_fails_as_a_step() {
   emc_good_input in.xml
-  expect_exit_within 60 1 "$EMC" in.xml --set Bodies/block/Material/young=1e308 --output out
+  expect_exit_within 60 1 "$EMC" in.xml --set Bodies/block/Material/young=1e308 \
+    --set "Bodies/block/Initial/velocity={1,0,0}" \
+    --set "Bodies/block/Initial/angular velocity={0,0,5}" --output out
   expect_err 'step 1 .*could not be solved'
   expect_short_err 2
   if grep -q "Throw number" last.err; then echo "a Trilinos dump"; return 1; fi
@@ -339,4 +342,35 @@ PY
   local bytes
   bytes=$(wc -c <last.err)
   [ "$bytes" -lt 2000 ] || { echo "stderr has $bytes bytes"; return 1; }
+}
+
+# --- restarts identical to the uninterrupted run ---
+
+hostile_restart_after_sigterm_identical() {
+  emc_contact_input in.xml
+  local opts=(--set Time/end=0.3 --set "Output/checkpoint every=4")
+  expect_exit 0 "$EMC" in.xml "${opts[@]}" --output A
+  "$EMC" in.xml "${opts[@]}" --output C >c.log 2>&1 &
+  local pid=$!
+  for _ in $(seq 600); do
+    [ -f C/monitors.csv ] && [ "$(wc -l <C/monitors.csv)" -ge 8 ] && break
+    sleep 0.05
+  done
+  kill -TERM $pid
+  local rc=0
+  wait $pid || rc=$?
+  echo "SIGTERM: exit $rc: $(tail -1 c.log)"
+  [ "$rc" -eq 1 ] || return 1
+  expect_exit 0 "$EMC" in.xml "${opts[@]}" --output C --restart C/checkpoint.h5
+  cmp A/monitors.csv C/monitors.csv
+}
+
+hostile_extended_run_identical() {
+  emc_contact_input in.xml
+  # 8 steps of 0.01 sum to 0.08 - 5e-18: the last step to end = 0.08 is dt within round-off
+  expect_exit 0 "$EMC" in.xml --set Time/end=0.12 --set "Output/checkpoint every=8" --output A
+  expect_exit 0 "$EMC" in.xml --set Time/end=0.08 --set "Output/checkpoint every=8" --output B
+  expect_exit 0 "$EMC" in.xml --set Time/end=0.12 --set "Output/checkpoint every=8" --output B \
+    --restart B/checkpoint.h5
+  cmp A/monitors.csv B/monitors.csv
 }
