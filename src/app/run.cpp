@@ -203,8 +203,8 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->contact =
       std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
-  sim->solver =
-      std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm, opt.input);
+  sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,
+                                                       opt.input);
   // CG needs a symmetric matrix: the mid-point tangent without frictionless contact is; the
   // energy-momentum tangent (ALGORITHM.md §1) and the frictionless P^T A Pt + X (§5) are not
   bool frictionless = false;

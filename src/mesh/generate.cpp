@@ -374,7 +374,10 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
   std::filesystem::path path(file);
   if (path.is_relative() && !input_dir.empty()) path = std::filesystem::path(input_dir) / path;
   const std::string resolved = path.lexically_normal().string();
-  try {
+  std::error_code ec;
+  if (!std::filesystem::exists(resolved, ec))
+    throw InputError(where + ": parameter 'file': mesh file '" + resolved + "' does not exist");
+  try {  // a directory, FIFO or device: say which
     input::check_regular_file(resolved, "mesh file");
   } catch (const InputError& e) {
     throw InputError(where + ": parameter 'file': " + e.what());

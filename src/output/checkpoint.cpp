@@ -34,6 +34,13 @@ std::vector<double> read_vector(hid_t file, const char* name, const std::string&
   const hid_t space = H5Dget_space(set);
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space, &n, nullptr);
+  hsize_t bytes = 0;  // a corrupt size must not allocate more than the file can hold
+  if (H5Fget_filesize(file, &bytes) < 0 || n > bytes / sizeof(double)) {
+    H5Sclose(space);
+    H5Dclose(set);
+    throw Error(path + ": the checkpoint dataset " + name +
+                " claims more values than the file holds");
+  }
   std::vector<double> v(n);
   const herr_t st =
       n ? H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) : 0;
