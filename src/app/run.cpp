@@ -12,6 +12,7 @@
 #include "emcontact/app/progress.hpp"
 #include "emcontact/app/restart.hpp"
 #include "emcontact/app/root_gather.hpp"
+#include "emcontact/app/scale_check.hpp"
 #include "emcontact/app/signals.hpp"
 #include "emcontact/app/run.hpp"
 #include "emcontact/app/simulation.hpp"
@@ -202,6 +203,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   const auto& disc = *sim->disc;
   sim->contact =
       std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
+  check_contact_scales(sim->model, sim->contact->pairs(), opt.input);
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
   sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,
                                                        opt.input);

@@ -374,3 +374,20 @@ hostile_extended_run_identical() {
     --restart B/checkpoint.h5
   cmp A/monitors.csv B/monitors.csv
 }
+
+# --- contact parameters whose scale silently disabled contact ---
+
+hostile_max_penetration_beyond_master_refused() {
+  cp "$HERE/../regression/drop.xml" in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set "Contact/block on ground/max penetration=1e100" \
+    --output out
+  expect_err 'parameter "Contact/block on ground/max penetration".*larger than the master'
+  expect_short_err 1
+}
+
+hostile_huge_rigid_plane_refused() {
+  cp "$HERE/../regression/drop.xml" in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set "Bodies/ground/Mesh/half width=1e100" --output out
+  expect_err 'parameter "Bodies/ground/Mesh".*more than 1e6 times'
+  expect_short_err 1
+}
