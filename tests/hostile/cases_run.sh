@@ -391,3 +391,16 @@ hostile_huge_rigid_plane_refused() {
   expect_err 'parameter "Bodies/ground/Mesh".*more than 1e6 times'
   expect_short_err 1
 }
+
+# A checkpoint of good_box.xml at step 2 written before checkpoints had a fingerprint and a
+# checksum (old_checkpoint_good_box.h5, with its monitors.csv): refused, saying why.
+hostile_checkpoint_without_fingerprint_refused() {
+  emc_good_input in.xml
+  mkdir old
+  cp "$HERE/old_checkpoint_good_box.h5" old/checkpoint.h5
+  cp "$HERE/old_checkpoint_good_box.csv" old/monitors.csv
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.04 --output old \
+    --restart old/checkpoint.h5
+  expect_err "old/checkpoint.h5: written by an older emcontact"
+  expect_short_err 1
+}
