@@ -129,7 +129,7 @@ void scan_list(const Teuchos::XMLObject& list, const std::string& path, const st
     if (type.empty() || !child.hasAttribute("value"))
       fail(file, p,
            {"needs type and value attributes",
-            "<Parameter name=\"" + name + "\" type=\"double\" value=\"1\"/>"});
+            "<Parameter name=\"" + shorten(name) + "\" type=\"double\" value=\"1\"/>"});
     const std::string& value = child.getAttribute("value");
     if (!value_is_valid(type, value))
       fail(file, p, {"value \"" + shorten(value) + "\" is not a valid " + type, value_hint(type)});

@@ -404,3 +404,16 @@ hostile_checkpoint_without_fingerprint_refused() {
   expect_err "old/checkpoint.h5: written by an older emcontact"
   expect_short_err 1
 }
+
+hostile_long_override_truncated() {
+  emc_good_input in.xml
+  local long
+  long=$(python3 -c 'print("x" * 100000)')
+  for o in "Time/integrator=$long" "Time/dt=9$long" "Time/$long=1" "$long/a=1"; do
+    expect_exit_within 30 1 "$EMC" in.xml --set "$o" --output out
+    expect_short_err 1
+    local bytes
+    bytes=$(wc -c <last.err)
+    [ "$bytes" -lt 2000 ] || { echo "stderr has $bytes bytes for --set ${o:0:20}..."; return 1; }
+  done
+}
