@@ -1,11 +1,12 @@
 // emcontact: conserving dynamic contact by direct elimination. See README.md.
 #include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
-
 #include <cstdio>
 #include <iostream>
 
+#include "emcontact/app/error_exit.hpp"
 #include "emcontact/app/run.hpp"
+#include "emcontact/app/signals.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/output/hdf5_file.hpp"
 
@@ -14,6 +15,8 @@ int main(int argc, char** argv) {
   emc::output::silence_hdf5_errors();  // errors are reported in one line each
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
+  const emc::app::ErrorExit error_exit;
+  emc::app::install_sigterm_handler(comm->getRank());
   try {
     const auto opt = emc::app::parse_args(argc, argv);
     if (opt.help) {
@@ -23,21 +26,20 @@ int main(int argc, char** argv) {
     Teuchos::Time wall("wall", true);
     const auto s = emc::app::run(opt, comm);
     if (root) {
-      std::printf("emcontact: %lld tets, %lld nodes on %d rank(s); setup %.3f s; %ld steps to "
-                  "t = %.6g in %.3f s (%.4f s/step, %.2f Newton iterations/step); total %.3f "
-                  "s; max |E-E0|/|E0| = %.3e (|E0| or, if 0, max K+W+|Pi|); output in %s\n",
-                  s.tets, s.nodes, comm->getSize(), s.setup_seconds, s.steps, s.time,
-                  s.stepping_seconds, s.steps ? s.stepping_seconds / s.steps : 0.0,
-                  s.steps ? double(s.newton_iterations) / s.steps : 0.0,
-                  wall.totalElapsedTime(true), s.max_energy_error, s.output_dir.c_str());
+      std::printf(
+          "emcontact: %lld tets, %lld nodes on %d rank(s); setup %.3f s; %ld steps to "
+          "t = %.6g in %.3f s (%.4f s/step, %.2f Newton iterations/step); total %.3f "
+          "s; max |E-E0|/|E0| = %.3e (|E0| or, if 0, max K+W+|Pi|); output in %s\n",
+          s.tets, s.nodes, comm->getSize(), s.setup_seconds, s.steps, s.time, s.stepping_seconds,
+          s.steps ? s.stepping_seconds / s.steps : 0.0,
+          s.steps ? double(s.newton_iterations) / s.steps : 0.0, wall.totalElapsedTime(true),
+          s.max_energy_error, s.output_dir.c_str());
     }
     Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, false);
     return 0;
   } catch (const emc::Error& e) {
-    if (root) std::cerr << "error: " << e.what() << std::endl;
-    return 1;
+    return error_exit.fail(e.what(), 1);
   } catch (const std::exception& e) {
-    if (root) std::cerr << "error: " << e.what() << std::endl;
-    return 2;
+    return error_exit.fail(e.what(), 2);
   }
 }

@@ -1,7 +1,10 @@
 #include "emcontact/app/restart.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <cstdio>
+#include <filesystem>
 
+#include "emcontact/app/checkpoint_check.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/output/checkpoint.hpp"
 #include "emcontact/parallel.hpp"
@@ -22,12 +25,41 @@ void copy_scalars(const From& f, To& t) {
   t.newton_contraction = f.newton_contraction;
 }
 
+/// A checkpoint at or past Time/end leaves nothing to run: say so (exit 1) rather than exit 0
+/// having done nothing.
+void check_time(const output::Checkpoint& c, const time::Stepper& stepper,
+                const std::string& path) {
+  if (c.t < stepper.end() - 1e-9 * stepper.nominal_dt()) return;
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                ": the checkpoint is at step %ld, t = %.17g, at or past Time/end = %.17g: "
+                "nothing left to run (a later Time/end continues the run)",
+                c.step, c.t, stepper.end());
+  throw Error(path + buf);
+}
+
+/// A changed Time/dt applies from the restart on (the step size of the next step and the
+/// target of any regrowth after cuts), with a note.
+void apply_new_dt(const output::Checkpoint& c, const time::Stepper& stepper, time::State& s,
+                  const std::string& path, bool root) {
+  if (c.nominal_dt == stepper.nominal_dt()) return;
+  s.dt = stepper.nominal_dt();
+  s.good_steps = 0;
+  if (root)
+    std::fprintf(stderr,
+                 "note: --restart %s: Time/dt changed from %.17g to %.17g: the new dt applies "
+                 "from step %ld on\n",
+                 path.c_str(), c.nominal_dt, stepper.nominal_dt(), c.step + 1);
+}
+
 }  // namespace
 
 void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path) {
   const auto& s = sim.state;
   output::Checkpoint c;
   copy_scalars(s, c);
+  c.nominal_dt = sim.stepper->nominal_dt();
+  c.model = model_fingerprint(sim);
   c.u = dofs(*s.u);
   c.V = dofs(*s.V);
   int has = s.last_increment.is_null() ? 0 : 1;
@@ -54,9 +86,8 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   if (comm.getRank() == 0) {
     try {
       c = output::read_checkpoint(path);
-      if (c.u.size() != sim.model.X.size() || c.V.size() != c.u.size())
-        throw Error(path + ": the checkpoint has " + std::to_string(c.u.size() / 3) +
-                    " nodes, the input's mesh " + std::to_string(sim.model.num_nodes()));
+      check_checkpoint(c, sim, path);
+      check_time(c, *sim.stepper, path);
     } catch (const std::exception& e) {
       error = e.what();
     }
@@ -74,6 +105,7 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   broadcast_vector(comm, c.normal_force);
   auto& s = sim.state;
   copy_scalars(c, s);
+  apply_new_dt(c, *sim.stepper, s, path, comm.getRank() == 0);
   dofs.scatter(c.u, *s.u);
   dofs.scatter(c.V, *s.V);
   s.last_increment = Teuchos::null;
@@ -94,6 +126,37 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
     a.xi[1] = c.active[k + 4];
     s.active.push_back(a);
     s.normal_force.push_back(c.normal_force.at(k / 5));
+  }
+}
+
+std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path,
+                            long kept) {
+  const auto& s = sim.state;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "stopped by SIGTERM after step %ld (t = %.6g); ", s.step, s.t);
+  if (kept < 0 || kept == s.step) {
+    if (kept < 0) save_checkpoint(sim, dofs, path);
+    return buf + ("continue with --restart " + path);
+  }
+  return buf + ("continue with --restart " + path + " (step " + std::to_string(kept) +
+                ", on the checkpoint grid: steps " + std::to_string(kept + 1) + " to " +
+                std::to_string(s.step) + " are recomputed, identically)");
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return !a.empty() && std::filesystem::equivalent(a, b, ec) && !ec;
+}
+
+void check_monitor_steps(const std::vector<output::MonitorRow>& rows, const std::string& file) {
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].step == static_cast<long>(i)) continue;
+    throw Error(file +
+                (rows[i].step > static_cast<long>(i)
+                     ? ": no row for step " + std::to_string(i)
+                     : ": step " + std::to_string(rows[i].step) + " given twice") +
+                " (a restart keeps the rows of steps 0 to " + std::to_string(rows.back().step) +
+                ", each once)");
   }
 }
 

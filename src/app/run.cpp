@@ -17,6 +17,8 @@
 #include "emcontact/app/progress.hpp"
 #include "emcontact/app/restart.hpp"
 #include "emcontact/app/root_gather.hpp"
+#include "emcontact/app/scale_check.hpp"
+#include "emcontact/app/signals.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/error.hpp"
@@ -27,6 +29,7 @@
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/fields.hpp"
 #include "emcontact/output/monitors.hpp"
+#include "emcontact/time/interrupt.hpp"
 #include "emcontact/time/stepper.hpp"
 
 namespace emc::app {
@@ -141,14 +144,6 @@ Writers make_writers(const fem::Discretization& disc, const std::string& dir, in
   return w;
 }
 
-/// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
-/// at rest under a load) the largest K + W + |Pi| so far.
-/// Set by SIGTERM: the time loop writes a checkpoint after the step and stops.
-volatile std::sig_atomic_t g_terminate = 0;
-extern "C" void on_sigterm(int) {
-  g_terminate = 1;
-}
-
 /// --restart: the state from the checkpoint, the monitors of the output directory up to its
 /// step (returned: the initial row); the preconditioner starts fresh, as after a checkpoint.
 output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::string& file,
@@ -165,6 +160,7 @@ output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::s
       if (rows.empty() || rows.back().step != sim.state.step)
         throw Error(dir + "/monitors.csv: no row for the checkpoint's step " +
                     std::to_string(sim.state.step));
+      check_monitor_steps(rows, dir + "/monitors.csv");
     } catch (const std::exception& e) {
       error = std::string("--restart ") + file + ": " + e.what();
     }
@@ -183,6 +179,8 @@ output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::s
   return row0;
 }
 
+/// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
+/// at rest under a load) the largest K + W + |Pi| so far.
 double energy_scale(const output::MonitorRow& r0, const output::MonitorRow& r, double scale) {
   if (r0.total != 0) return std::fabs(r0.total);
   return std::max({scale, r.kinetic + r.elastic + std::fabs(r.potential), 1e-300});
@@ -202,8 +200,10 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
       std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
   if (opt.restart.empty())
     sim->contact->check_initial_penetration(contact::positions(sim->model, {}), opt.input);
+  check_contact_scales(sim->model, sim->contact->pairs(), opt.input);
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
-  sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm);
+  sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,
+                                                       opt.input);
   // CG needs a symmetric matrix: the mid-point tangent without frictionless contact is; the
   // energy-momentum tangent (ALGORITHM.md §1) and the frictionless P^T A Pt + X (§5) are not
   bool frictionless = false;
@@ -257,10 +257,21 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.get<int>("checkpoint every");
-  std::signal(SIGTERM, on_sigterm);
+  sigterm_stops_time_loop();
+  // the step of DIR/checkpoint.h5 if this run wrote it or restarted from it, else -1
+  long kept = same_file(opt.restart, sum.output_dir + "/checkpoint.h5") ? state.step : -1;
+  auto stop_on_sigterm = [&]() {
+    if (root) w.monitors->flush(true);
+    throw RunError(stop_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5", kept));
+  };
   try {
     while (!stepper.finished()) {
-      const time::StepReport rep = stepper.advance();
+      time::StepReport rep;
+      try {
+        rep = stepper.advance();
+      } catch (const time::Interrupted&) {
+        stop_on_sigterm();
+      }
       const auto row = monitor_row(disc, state, rep);
       escale = energy_scale(row0, row, escale);
       const double err = std::fabs(row.total - row0.total) / escale;
@@ -278,18 +289,11 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         // --restart), never a checkpoint without its row (found by kill_and_restart)
         if (root) w.monitors->flush(true);
         save_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5");
+        kept = state.step;
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
       }
       progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);
-      int stop = g_terminate, any = 0;  // every rank stops at the same step
-      Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &stop, &any);
-      if (any) {
-        const std::string file = sum.output_dir + "/checkpoint.h5";
-        if (root) w.monitors->flush(true);
-        save_checkpoint(*sim, *w.dofs, file);
-        throw RunError("stopped by SIGTERM after step " + std::to_string(state.step) +
-                       " (t = " + std::to_string(state.t) + "); continue with --restart " + file);
-      }
+      if (time::stop_requested(*comm)) stop_on_sigterm();  // every rank at the same step
     }
   } catch (const RunError& e) {  // collective: every rank stops at the same step
     progress.finish();

@@ -171,7 +171,14 @@ std::string type_name(const any& value) {
   return value.typeName();
 }
 
-std::string format_value(const any& value, bool quote_strings) {
+std::string shorten(const std::string& text) {
+  constexpr std::size_t kMax = 80;  // a refused value is echoed, not dumped
+  if (text.size() <= kMax) return text;
+  return text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+namespace {
+std::string format_whole_value(const any& value, bool quote_strings) {
   if (value.type() == typeid(double)) return format_double(any_cast<double>(value));
   if (value.type() == typeid(int)) return std::to_string(any_cast<int>(value));
   if (value.type() == typeid(long long)) return std::to_string(any_cast<long long>(value));
@@ -187,6 +194,11 @@ std::string format_value(const any& value, bool quote_strings) {
   std::ostringstream os;
   value.print(os);
   return os.str();
+}
+}  // namespace
+
+std::string format_value(const any& value, bool quote_strings) {
+  return shorten(format_whole_value(value, quote_strings));
 }
 
 std::optional<int> required_size(const ParameterEntry& valid) {

@@ -3,6 +3,7 @@
 #include "emcontact/input/input.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "emcontact/error.hpp"
@@ -59,9 +60,22 @@ void check_bodies(const ParameterList& params, const std::string& file) {
     detail::fail(file, "Bodies", {"no body given", "one sublist per body (at least one)"});
 }
 
+/// A run of at most this many nominal steps: a dt below end / kMaxSteps cannot be meant (and
+/// from about end * 1e-16 on, t + dt == t: time would not advance).
+constexpr double kMaxSteps = 1e9;
+
 void check_end_time(const ParameterList& params, const std::string& file) {
   const auto& time = params.sublist("Time");
   const double dt = time.get<double>("dt"), end = time.get<double>("end");
+  for (const char* name : {"dt", "end"})
+    if (!std::isfinite(time.get<double>(name)))
+      detail::fail(file, std::string("Time/") + name, {"is not finite", "a finite double > 0"});
+  if (end / dt > kMaxSteps)
+    detail::fail(file, "Time/dt",
+                 {"dt = " + detail::format_double(dt) + " would take " +
+                      detail::format_double(std::ceil(end / dt)) +
+                      " steps to Time/end = " + detail::format_double(end),
+                  "a dt >= end / 1e9 (at most 1e9 steps)"});
   if (end < dt)
     detail::fail(file, "Time/end",
                  {"end = " + detail::format_double(end) +

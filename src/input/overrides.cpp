@@ -94,7 +94,8 @@ std::vector<std::string> split_path(const std::string& path) {
 
 /// Throws InputError `<file>: override "<text>": <what>; allowed: <allowed>`.
 [[noreturn]] void refuse(const std::string& file, const std::string& text, const Problem& p) {
-  throw InputError(file + ": override \"" + text + "\": " + p.what + "; allowed: " + p.allowed);
+  throw InputError(file + ": override \"" + shorten(text) + "\": " + p.what +
+                   "; allowed: " + p.allowed);
 }
 
 /// Where an override is applied: the user's list, its schema (null inside pass-through lists).
@@ -107,7 +108,8 @@ struct Target {
 ParameterList* user_sublist(ParameterList* user, const std::string& name, const std::string& file,
                             const std::string& text) {
   if (user->isParameter(name) && !user->isSublist(name))
-    refuse(file, text, {"\"" + name + "\" is a parameter in the input, not a sublist", "a path"});
+    refuse(file, text,
+           {"\"" + shorten(name) + "\" is a parameter in the input, not a sublist", "a path"});
   return &user->sublist(name);
 }
 
@@ -121,7 +123,7 @@ Target section_target(ParameterList& params, const std::vector<std::string>& par
   if (s == all.end()) {
     std::string names;
     for (const auto& x : all) names += (names.empty() ? "" : ", ") + x.name;
-    refuse(file, text, {"unknown section \"" + parts[0] + "\"", names});
+    refuse(file, text, {"unknown section \"" + shorten(parts[0]) + "\"", names});
   }
   keep_alive = s->schema;
   ParameterList* user = user_sublist(&params, s->name, file, text);
@@ -132,7 +134,7 @@ Target section_target(ParameterList& params, const std::vector<std::string>& par
     const std::string names = entry_names(*user);
     refuse(file, text,
            {parts.size() < 3 ? "no " + what + " named"
-                             : "\"" + parts[1] + "\" is not a " + what + " of the input",
+                             : "\"" + shorten(parts[1]) + "\" is not a " + what + " of the input",
             s->name + "/" + s->placeholder + "/... with " + s->placeholder +
                 " one of: " + (names.empty() ? "(none in the input)" : names)});
   }
@@ -146,7 +148,8 @@ Target descend(Target t, const std::string& name, const std::string& file,
   if (t.valid) {
     if (!t.valid->isSublist(name))
       refuse(file, text,
-             {"no sublist \"" + name + "\"" + suggestion(name, *t.valid), entry_names(*t.valid)});
+             {"no sublist \"" + shorten(name) + "\"" + suggestion(name, *t.valid),
+              entry_names(*t.valid)});
     t.valid = &t.valid->sublist(name);
     if (is_pass_through(*t.valid)) t.valid = nullptr;
   }
@@ -158,7 +161,8 @@ Target descend(Target t, const std::string& name, const std::string& file,
 /// pass-through list, the existing entry's type (else a guess).
 void set_leaf(const Target& t, const std::string& name, const std::string& value_text,
               const std::string& file, const std::string& text) {
-  if (t.user->isSublist(name)) refuse(file, text, {"\"" + name + "\" is a sublist", "a parameter"});
+  if (t.user->isSublist(name))
+    refuse(file, text, {"\"" + shorten(name) + "\" is a sublist", "a parameter"});
   if (!t.valid) {
     Teuchos::any v = guess_value(value_text);
     if (t.user->isParameter(name)) {  // keep the type of the existing entry
@@ -167,7 +171,7 @@ void set_leaf(const Target& t, const std::string& name, const std::string& value
         v = parse_value(value_text, old);
       } catch (const std::invalid_argument&) {
         refuse(file, text,
-               {"\"" + value_text + "\" is not a valid " + type_name(old),
+               {"\"" + shorten(value_text) + "\" is not a valid " + type_name(old),
                 "a value of type " + type_name(old) + " (as the entry in the input)"});
       }
     }
@@ -177,20 +181,20 @@ void set_leaf(const Target& t, const std::string& name, const std::string& value
     return;
   }
   if (!t.valid->isParameter(name))
-    refuse(
-        file, text,
-        {"unknown parameter \"" + name + "\"" + suggestion(name, *t.valid), entry_names(*t.valid)});
+    refuse(file, text,
+           {"unknown parameter \"" + shorten(name) + "\"" + suggestion(name, *t.valid),
+            entry_names(*t.valid)});
   const Teuchos::ParameterEntry& valid = t.valid->getEntry(name);
   if (valid.isList())
     refuse(file, text,
-           {"\"" + name + "\" is a sublist",
+           {"\"" + shorten(name) + "\" is a sublist",
             "a parameter inside it: " + entry_names(t.valid->sublist(name))});
   Teuchos::ParameterEntry e;
   try {
     e.setAnyValue(parse_value(value_text, valid.getAny(false)));
   } catch (const std::invalid_argument&) {
     refuse(file, text,
-           {"\"" + value_text + "\" is not a valid " + type_name(valid.getAny(false)),
+           {"\"" + shorten(value_text) + "\" is not a valid " + type_name(valid.getAny(false)),
             allowed_text(valid)});
   }
   if (auto p = check_entry(e, valid)) refuse(file, text, *p);
@@ -236,7 +240,7 @@ void apply_override(ParameterList& params, const std::string& text, const std::s
   if (std::find(parts.begin(), parts.end(), "") != parts.end())
     refuse(file, text, {"empty name in the path", "Section/.../name=value"});
   if (parts.size() < 2)
-    refuse(file, text, {"\"" + path + "\" is a section", "Section/.../name=value"});
+    refuse(file, text, {"\"" + shorten(path) + "\" is a section", "Section/.../name=value"});
   std::size_t next = 0;
   Teuchos::RCP<const ParameterList> keep_alive;
   Target t = section_target(params, parts, next, file, text, keep_alive);

@@ -40,7 +40,8 @@ std::string join(const std::string& path, const std::string& name) {
 }  // namespace
 
 void fail(const std::string& file, const std::string& path, const Problem& p) {
-  throw InputError(file + ": parameter \"" + path + "\": " + p.what + "; allowed: " + p.allowed);
+  throw InputError(file + ": parameter \"" + shorten(path) + "\": " + p.what +
+                   "; allowed: " + p.allowed);
 }
 
 std::optional<Problem> check_entry(const ParameterEntry& user, const ParameterEntry& valid) {

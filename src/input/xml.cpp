@@ -2,14 +2,16 @@
 #include <Teuchos_FileInputSource.hpp>
 #include <Teuchos_XMLObject.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
+#include "emcontact/input/files.hpp"
 
 namespace emc::input::detail {
 namespace {
@@ -18,15 +20,57 @@ namespace {
   throw InputError(file + ": cannot read the input: " + reason);
 }
 
-/// Refuses a missing, unreadable or non-regular file with a one-line reason.
+/// Deeper nesting than this is refused before Teuchos' recursive reader sees it (deep enough
+/// nesting overflows its stack); real inputs nest 4 or 5 levels.
+constexpr int kMaxDepth = 64;
+
+/// The deepest element nesting of the XML text (comments, processing instructions,
+/// declarations, CDATA and quoted attribute values skipped), or kMaxDepth + 1 once beyond.
+int nesting_depth(std::istream& in) {
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  int depth = 0, deepest = 0;
+  for (std::size_t i = text.find('<'); i != std::string::npos; i = text.find('<', i)) {
+    auto skip_past = [&](const char* end) {
+      const auto e = text.find(end, i);
+      i = e == std::string::npos ? text.size() : e + std::strlen(end);
+    };
+    if (text.compare(i, 4, "<!--") == 0) {
+      skip_past("-->");
+    } else if (text.compare(i, 9, "<![CDATA[") == 0) {
+      skip_past("]]>");
+    } else if (text.compare(i, 2, "<?") == 0 || text.compare(i, 2, "<!") == 0) {
+      skip_past(">");
+    } else if (text.compare(i, 2, "</") == 0) {
+      --depth;
+      skip_past(">");
+    } else {  // a start tag: find its end outside quoted attribute values
+      char quote = 0;
+      std::size_t j = i + 1;
+      for (; j < text.size(); ++j) {
+        if (quote) {
+          if (text[j] == quote) quote = 0;
+        } else if (text[j] == '"' || text[j] == '\'') {
+          quote = text[j];
+        } else if (text[j] == '>') {
+          break;
+        }
+      }
+      if (j >= text.size() || text[j - 1] != '/') deepest = std::max(deepest, ++depth);
+      if (deepest > kMaxDepth) return deepest;
+      i = j;
+    }
+  }
+  return deepest;
+}
+
+/// Refuses a missing, unreadable or non-regular file, or one nested too deeply.
 void check_readable(const std::string& file) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const auto status = fs::status(file, ec);
-  if (!fs::exists(status)) cannot_read(file, "no such file");
-  if (fs::is_directory(status)) cannot_read(file, "it is a directory");
-  std::ifstream in(file);
+  check_regular_file(file, "input");
+  std::ifstream in(file, std::ios::binary);
   if (!in) cannot_read(file, std::strerror(errno));
+  if (nesting_depth(in) > kMaxDepth)
+    cannot_read(file, "elements are nested more than " + std::to_string(kMaxDepth) +
+                          " levels deep (the limit; an input needs about 5)");
 }
 
 /// A type-appropriate example of what a value must look like.
@@ -85,10 +129,10 @@ void scan_list(const Teuchos::XMLObject& list, const std::string& path, const st
     if (type.empty() || !child.hasAttribute("value"))
       fail(file, p,
            {"needs type and value attributes",
-            "<Parameter name=\"" + name + "\" type=\"double\" value=\"1\"/>"});
+            "<Parameter name=\"" + shorten(name) + "\" type=\"double\" value=\"1\"/>"});
     const std::string& value = child.getAttribute("value");
     if (!value_is_valid(type, value))
-      fail(file, p, {"value \"" + value + "\" is not a valid " + type, value_hint(type)});
+      fail(file, p, {"value \"" + shorten(value) + "\" is not a valid " + type, value_hint(type)});
   }
 }
 

@@ -13,7 +13,8 @@ namespace emc::linalg {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
-LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm> comm)
+LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm> comm,
+                           const std::string& file)
     : type_(linear.get<std::string>("type")),
       prec_type_(linear.get<std::string>("preconditioner")),
       tol_(linear.get<double>("tolerance")),
@@ -27,6 +28,7 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
     throw InputError(
         "Solver/Linear/type = klu2 runs on one rank only (Debian's Amesos2 KLU2 is wrong on "
         "2+ ranks); allowed on " + std::to_string(comm->getSize()) + " ranks: gmres, cg");
+  if (type_ != "klu2") check_pass_through(comm, file);
 }
 
 std::string LinearSolver::description() const {
@@ -34,19 +36,17 @@ std::string LinearSolver::description() const {
   return "Belos " + std::string(type_ == "cg" ? "CG" : "GMRES") + " + " + prec_type_;
 }
 
-void LinearSolver::build_preconditioner(const RCP<Matrix>& A) {
+void LinearSolver::build_preconditioner(const RCP<Matrix>& A, std::vector<std::string>* unused) {
   Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: preconditioner"));
   if (prec_type_ == "none")
     prec_ = Teuchos::null;
   else if (prec_type_ == "muelu")
     prec_ = make_muelu(A, muelu_);
   else
-    prec_ = make_ifpack2(prec_type_, A, ifpack2_);
+    prec_ = make_ifpack2(prec_type_, A, ifpack2_, unused);
 }
 
-int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
-                              bool& converged, std::string& message) {
-  using Problem = Belos::LinearProblem<double, MultiVector, Operator>;
+RCP<Teuchos::ParameterList> LinearSolver::belos_parameters(double tol) const {
   auto params = rcp(new Teuchos::ParameterList);
   params->set("Convergence Tolerance", tol);
   params->set("Maximum Iterations", max_iters_);
@@ -57,6 +57,13 @@ int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, 
   params->set("Implicit Residual Scaling", "Norm of RHS");
   params->set("Explicit Residual Scaling", "Norm of RHS");
   params->setParameters(belos_);
+  return params;
+}
+
+int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
+                              bool& converged, std::string& message) {
+  using Problem = Belos::LinearProblem<double, MultiVector, Operator>;
+  auto params = belos_parameters(tol);
   x.putScalar(0.0);
   auto problem = rcp(new Problem(A, Teuchos::rcpFromRef(x), Teuchos::rcpFromRef(b)));
   if (!prec_.is_null()) problem->setRightPrec(prec_);
@@ -75,6 +82,18 @@ int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, 
 }
 
 SolveStats LinearSolver::solve(const RCP<Matrix>& A, const Vector& b, Vector& x, double tol) {
+  try {
+    return checked_solve(A, b, x, tol);
+  } catch (const LinearSolveError&) {
+    throw;
+  } catch (const std::exception& e) {  // Belos, Ifpack2, MueLu, Amesos2: a failed solve
+    prec_ = Teuchos::null;
+    throw LinearSolveError("linear solver (" + description() + ") failed: " + one_line(e.what()));
+  }
+}
+
+SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Vector& x,
+                                       double tol) {
   SolveStats st;
   tol = std::max(tol, tol_);
   const double decades = std::max(1.0, -std::log10(tol));

@@ -1,4 +1,5 @@
 #include <Ifpack2_Factory.hpp>
+#include <Ifpack2_Parameters.hpp>
 
 #include "emcontact/linalg/linear_solver.hpp"
 
@@ -8,7 +9,8 @@ namespace emc::linalg {
 // (measured best of the Ifpack2 options on 2 ranks, see README "Toolchain"). The user's
 // `Ifpack2` sublist overrides these defaults unchanged.
 Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<const Matrix>& A,
-                                    const Teuchos::ParameterList& user) {
+                                    const Teuchos::ParameterList& user,
+                                    std::vector<std::string>* unused) {
   Teuchos::ParameterList p;
   std::string name = "RILUK";
   if (type == "schwarz") {
@@ -23,6 +25,12 @@ Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<
   p.setParameters(user);
   auto prec = Ifpack2::Factory::create<Matrix>(name, A);
   prec->setParameters(p);
+  if (unused) {  // Ifpack2 ignores names it does not know
+    Teuchos::ParameterList valid;
+    Ifpack2::getValidParameters(valid);
+    for (auto it = user.begin(); it != user.end(); ++it)
+      if (!valid.isParameter(user.name(it))) unused->push_back(user.name(it));
+  }
   prec->initialize();
   prec->compute();
   return prec;

@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/files.hpp"
 #include "src/mesh/internal.hpp"
 
 namespace emc::mesh {
@@ -374,8 +375,12 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
   if (path.is_relative() && !input_dir.empty()) path = std::filesystem::path(input_dir) / path;
   const std::string resolved = path.lexically_normal().string();
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(resolved, ec)) {
+  if (!std::filesystem::exists(resolved, ec))
     throw InputError(where + ": parameter 'file': mesh file '" + resolved + "' does not exist");
+  try {  // a directory, FIFO or device: say which
+    input::check_regular_file(resolved, "mesh file");
+  } catch (const InputError& e) {
+    throw InputError(where + ": parameter 'file': " + e.what());
   }
   return read_msh(resolved, p.get<std::string>("volume"), where);
 }

@@ -82,7 +82,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
   set_positive(*pl, "half width", 1.0,
                "Half the side of the square of type 'plane' (its extent from 'center' along "
                "both in-plane directions); the square is cut into at most 200 x 200 squares of "
-               "two triangles (larger than 'size' if needed)");
+               "two triangles (larger than 'size' if needed). A rigid surface may be at most 1e6 "
+               "times the size of the deformable bodies (bounding box diagonals)");
   set_positive(*pl, "height", 0.1, "Cylinder height along 'axis'");
   set_positive(*pl, "radius", 0.1, "Radius of the solid cylinder (type 'cylinder')");
   set_positive(*pl, "inner radius", 0.05,

@@ -3,8 +3,12 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <cmath>
+
 #include "emcontact/error.hpp"
 #include "emcontact/output/hdf5_file.hpp"
+#include "emcontact/input/files.hpp"
+#include "src/output/checkpoint_meta.hpp"
 
 namespace emc::output {
 
@@ -31,6 +35,13 @@ std::vector<double> read_vector(hid_t file, const char* name, const std::string&
   const hid_t space = H5Dget_space(set);
   hsize_t n = 0;
   H5Sget_simple_extent_dims(space, &n, nullptr);
+  hsize_t bytes = 0;  // a corrupt size must not allocate more than the file can hold
+  if (H5Fget_filesize(file, &bytes) < 0 || n > bytes / sizeof(double)) {
+    H5Sclose(space);
+    H5Dclose(set);
+    throw Error(path + ": the checkpoint dataset " + name +
+                " claims more values than the file holds");
+  }
   std::vector<double> v(n);
   const herr_t st =
       n ? H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) : 0;
@@ -40,15 +51,34 @@ std::vector<double> read_vector(hid_t file, const char* name, const std::string&
   return v;
 }
 
+/// The model fingerprint and the checksum: present (else an older checkpoint, refused) and
+/// matching the contents.
+void check_integrity(hid_t file, Checkpoint& c, const std::string& path) {
+  auto model = detail::read_string_attribute(file, "model", path);
+  const auto sum = detail::read_u64_attribute(file, "checksum", path);
+  if (!model || !sum)
+    throw Error(path +
+                ": written by an older emcontact (no model fingerprint or checksum); "
+                "such checkpoints cannot be checked: run again from the start");
+  c.model = std::move(*model);
+  if (detail::checksum(c) != *sum)
+    throw Error(path + ": the checksum does not match the contents (the file is corrupt)");
+}
+
 }  // namespace
 
 std::vector<double> Checkpoint::scalars() const {
-  return {double(step),      t, dt, last_h, double(good_steps), double(last_iterations),
-          newton_contraction};
+  return {double(step),       t,         dt, last_h, double(good_steps), double(last_iterations),
+          newton_contraction, nominal_dt};
 }
 
 void Checkpoint::set_scalars(const std::vector<double>& s, const std::string& path) {
-  if (s.size() != 6 && s.size() != 7) throw Error(path + ": bad checkpoint scalars");
+  if (s.size() < 6 || s.size() > 8) throw Error(path + ": bad checkpoint scalars");
+  const char* names[] = {"step", "good_steps", "last_iterations"};
+  for (int k : {0, 4, 5})  // counters: whole numbers, castable
+    if (!(s[k] >= 0 && s[k] <= 9e15 && s[k] == std::floor(s[k])))
+      throw Error(path + ": the checkpoint's " + names[k == 0 ? 0 : k - 3] + " (" +
+                  std::to_string(s[k]) + ") is not a count");
   step = static_cast<long>(s[0]);
   t = s[1];
   dt = s[2];
@@ -56,6 +86,7 @@ void Checkpoint::set_scalars(const std::vector<double>& s, const std::string& pa
   good_steps = static_cast<int>(s[4]);
   last_iterations = static_cast<int>(s[5]);
   newton_contraction = s.size() > 6 ? s[6] : 0.0;  // absent before the inexact Newton
+  nominal_dt = s.size() > 7 ? s[7] : 0.0;
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {
@@ -67,11 +98,13 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     write_vector(file, "last_increment", c.last_increment, path);
     write_vector(file, "active", c.active, path);
     write_vector(file, "normal_force", c.normal_force, path);
+    detail::write_string_attribute(file, "model", c.model, path);
+    detail::write_u64_attribute(file, "checksum", detail::checksum(c), path);
   });
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  if (access(path.c_str(), R_OK) != 0) throw Error(path + ": cannot read the checkpoint file");
+  input::check_regular_file(path, "checkpoint");
   const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file < 0) throw Error(path + ": not an HDF5 file");
   Checkpoint c;
@@ -82,6 +115,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     c.last_increment = read_vector(file, "last_increment", path);
     c.active = read_vector(file, "active", path);
     c.normal_force = read_vector(file, "normal_force", path);
+    check_integrity(file, c, path);
   } catch (...) {
     H5Fclose(file);
     throw;

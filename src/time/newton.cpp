@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "emcontact/time/interrupt.hpp"
 #include "emcontact/time/timers.hpp"
 
 namespace emc::time {
@@ -100,6 +101,7 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
   };
   bool with_matrix = true;
   for (int it = 0;; ++it) {
+    if (stop_requested(*disc_.comm())) throw Interrupted();  // SIGTERM within a long step
     const fem::AssemblyInfo info = assemble(with_matrix);
     if (!(info.min_detF > 0)) {
       char buf[160];

@@ -1,6 +1,8 @@
 // Schema of the `Time` section.
 #include "emcontact/time/parameters.hpp"
 
+#include <cmath>
+
 #include "emcontact/input/validators.hpp"
 
 namespace emc::time {
@@ -8,9 +10,13 @@ namespace emc::time {
 Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
   using namespace emc::input;
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Time"));
-  pl->set("dt", 0.01, "Nominal time step [s]; the step is halved on failure (see max step cuts).",
-          positive_double());
-  pl->set("end", 1.0, "End time [s] (the run starts at t = 0); must be >= dt.", positive_double());
+  // beyond 1e30 s the inertia terms of the residual underflow: a step "converges" unmoved
+  const auto time_range = double_range(std::nextafter(0.0, 1.0), 1e30);
+  pl->set("dt", 0.01,
+          "Nominal time step [s]; the step is halved on failure (see max step cuts). At most "
+          "1e9 steps: dt >= end / 1e9.",
+          time_range);
+  pl->set("end", 1.0, "End time [s] (the run starts at t = 0); must be >= dt.", time_range);
   pl->set("integrator", std::string("energy-momentum"), "Time integrator.",
           string_choice("integrator", {"energy-momentum", "midpoint"},
                         {"energy-momentum conserving scheme (conserves energy and momenta)",

@@ -134,13 +134,30 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   return true;
 }
 
+// A step that cannot advance time (below the round-off of t, or not finite: a corrupt
+// state) would loop forever: stop instead.
+void Stepper::check_step_size(double h) const {
+  if (std::isfinite(h) && h > 0 && s_.t + h > s_.t) return;
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "step %ld at t = %.6g: the step size %.3g cannot advance time (it must be "
+                "finite, > 0 and above the round-off of t; Time/dt = %.3g)",
+                s_.step + 1, s_.t, h, dt_);
+  throw RunError(buf);
+}
+
 StepReport Stepper::advance() {
   StepReport rep;
   const Vector& u0 = *s_.u;
   Vector u1(u0.getMap());
   newton_.set_contraction(s_.newton_contraction);
   for (;;) {
-    const double h = std::min(s_.dt, end_ - s_.t);
+    // the last step is shortened to end at Time/end, unless only by round-off of the sum of
+    // the steps: then it is dt itself, as in a run with a later end (an extended run goes on
+    // exactly as that one)
+    const double rest = end_ - s_.t;
+    const double h = rest < s_.dt * (1 - 1e-9) ? rest : s_.dt;
+    check_step_size(h);
     if (solve_step(h, u1, rep)) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n
       s_.V->update(2.0 / h, u1, -2.0 / h, u0, -1.0);

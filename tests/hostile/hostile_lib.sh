@@ -16,7 +16,7 @@ expect_exit() {
   timeout -k 5 120 "$@" >last.out 2>last.err || rc=$?
   if [ "$rc" -ne "$want" ]; then
     echo "expected exit $want, got $rc from: $*"
-    tail -20 last.out last.err
+    tail -n 20 last.out last.err
     return 1
   fi
 }
@@ -37,6 +37,20 @@ expect_short_err() {
   if [ "$n" -gt "$1" ]; then
     echo "stderr has $n lines (at most $1 allowed):"
     head -40 last.err
+    return 1
+  fi
+}
+
+# expect_exit_within SECONDS CODE CMD...: expect_exit with a shorter timeout (a hang shows as
+# exit 124 quickly).
+expect_exit_within() {
+  local secs=$1 want=$2
+  shift 2
+  local rc=0
+  timeout -k 5 "$secs" "$@" >last.out 2>last.err || rc=$?
+  if [ "$rc" -ne "$want" ]; then
+    echo "expected exit $want, got $rc (timeout ${secs} s) from: $*"
+    tail -n 20 last.out last.err
     return 1
   fi
 }

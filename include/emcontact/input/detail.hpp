@@ -34,6 +34,9 @@ std::string type_name(const Teuchos::any& value);
 /// A value as the user writes it: shortest round-trip doubles, {x, y, z} arrays, quoted strings
 /// if `quote_strings`.
 std::string format_value(const Teuchos::any& value, bool quote_strings = true);
+/// `text` if short, else its first 80 characters, "..." and its length (values echoed in
+/// messages).
+std::string shorten(const std::string& text);
 /// The shortest decimal that reads back as exactly `x`.
 std::string format_double(double x);
 /// What a schema entry accepts, as a phrase ("a double > 0", "one of \"gmres\", \"cg\"").

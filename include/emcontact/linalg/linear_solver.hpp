@@ -3,10 +3,13 @@
 // Ifpack2 (ILU, additive Schwarz) or MueLu preconditioner on any number of ranks, or Amesos2
 // KLU2 on one rank. The preconditioner is reused across Newton iterations and steps while the
 // iteration count stays near the count of a fresh one. After every solve the true residual
-// is checked; a failure throws LinearSolveError with the solver's own message.
+// is checked; a failure, or an exception of Belos, Ifpack2, MueLu or Amesos2 (a NaN in the
+// matrix), throws LinearSolveError with the solver's own message on one line, which the time
+// stepper treats as a failed step (dt halved).
 #include <Teuchos_ParameterList.hpp>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "emcontact/error.hpp"
 #include "emcontact/types.hpp"
@@ -24,9 +27,11 @@ struct SolveStats {
   bool fresh_preconditioner = false;
 };
 
-/// A preconditioner factory result (Ifpack2 or MueLu), as a Tpetra operator.
+/// A preconditioner factory result (Ifpack2 or MueLu), as a Tpetra operator. `unused`, if
+/// given, receives the names of `user` that Ifpack2 does not know.
 Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<const Matrix>& A,
-                                    const Teuchos::ParameterList& user);
+                                    const Teuchos::ParameterList& user,
+                                    std::vector<std::string>* unused = nullptr);
 Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A,
                                   const Teuchos::ParameterList& user);
 /// x = A^-1 b with Amesos2 KLU2 (one rank only), keeping the symbolic factorisation while
@@ -43,10 +48,18 @@ class DirectKlu2 {
   int symbolic_ = 0;
 };
 
+/// A package's multi-line exception text on one line: the throw location and test lines
+/// dropped, at most 300 characters.
+std::string one_line(const std::string& message);
+
 class LinearSolver {
  public:
-  /// `linear` is the validated `Solver/Linear` sublist.
-  LinearSolver(const Teuchos::ParameterList& linear, Teuchos::RCP<const Comm> comm);
+  /// `linear` is the validated `Solver/Linear` sublist. The pass-through sublists (Belos,
+  /// Ifpack2, MueLu) are tried once on a small matrix: a value the package refuses throws
+  /// InputError naming `file` and the sublist; names the package does not know get a warning
+  /// on rank 0.
+  LinearSolver(const Teuchos::ParameterList& linear, Teuchos::RCP<const Comm> comm,
+               const std::string& file = "");
 
   /// Solves A x = b from x = 0 to the relative tolerance `tol` (<= 0: the input's tolerance;
   /// never below it). Throws LinearSolveError if the true residual is too large.
@@ -68,9 +81,13 @@ class LinearSolver {
   DirectKlu2 klu2_;
   double fresh_rate_ = 0;  ///< Krylov iterations per decade of a fresh preconditioner
 
+  SolveStats checked_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol);
   int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
                   bool& converged, std::string& message);
-  void build_preconditioner(const Teuchos::RCP<Matrix>& A);
+  Teuchos::RCP<Teuchos::ParameterList> belos_parameters(double tol) const;
+  void build_preconditioner(const Teuchos::RCP<Matrix>& A,
+                            std::vector<std::string>* unused = nullptr);
+  void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);
 };
 
 }  // namespace emc::linalg

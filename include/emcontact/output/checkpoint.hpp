@@ -12,20 +12,25 @@ struct Checkpoint {
   double t = 0, dt = 0, last_h = 0;
   int good_steps = 0, last_iterations = 0;
   double newton_contraction = 0;  ///< absent from older checkpoints (then 0)
+  double nominal_dt = 0;          ///< the input's Time/dt of the run that wrote it
+  std::string model;  ///< the fingerprint of the model it belongs to (one "key: value" a line)
   std::vector<double> u, V;            ///< 3 per node, global order
   std::vector<double> last_increment;  ///< 3 per node, or empty (no step taken yet)
   std::vector<double> active;          ///< 5 per active slave: slave, pair, facet, xi, eta
   std::vector<double> normal_force;    ///< f_N per active slave
 
   /// The scalars as stored (step, t, dt, last_h, good_steps, last_iterations,
-  /// newton_contraction), and back (6 or 7 values; throws emc::Error naming `path` otherwise).
+  /// newton_contraction, nominal_dt), and back (6 to 8 values, the counters whole numbers
+  /// >= 0; throws emc::Error naming `path` otherwise).
   std::vector<double> scalars() const;
   void set_scalars(const std::vector<double>& s, const std::string& path);
 };
 
 /// Writes `path` atomically (temporary name, then rename); throws emc::Error naming it.
 void write_checkpoint(const std::string& path, const Checkpoint& c);
-/// Reads a checkpoint; throws emc::Error naming the file and what is wrong.
+/// Reads a checkpoint; throws emc::Error naming the file and what is wrong: not a regular
+/// file, not a checkpoint, written before checkpoints had a model fingerprint and checksum,
+/// or a checksum that does not match its contents.
 Checkpoint read_checkpoint(const std::string& path);
 
 }  // namespace emc::output

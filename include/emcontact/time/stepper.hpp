@@ -68,6 +68,7 @@ class Stepper {
   std::unique_ptr<contact::ActiveConstraints> constraints_;
 
   void apply(std::vector<contact::Active>& active);
+  void check_step_size(double h) const;
   bool solve_step(double h, Vector& u1, StepReport& rep);
 };
 

@@ -1,0 +1,147 @@
+#include "emcontact/app/checkpoint_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <sstream>
+
+#include "emcontact/error.hpp"
+
+namespace emc::app {
+namespace {
+
+template <class T>
+void hash_into(std::uint64_t& h, const std::vector<T>& v) {
+  const auto* p = reinterpret_cast<const unsigned char*>(v.data());
+  for (std::size_t i = 0; i < v.size() * sizeof(T); ++i) h = (h ^ p[i]) * 1099511628211ull;
+}
+
+std::string hex(std::uint64_t h) {
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+/// "model" lines of the checkpoint and of the input: the first difference, or "".
+std::string first_difference(const std::string& stored, const std::string& input) {
+  const auto a = lines(stored), b = lines(input);
+  for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+    const std::string x = i < a.size() ? a[i] : "(nothing)", y = i < b.size() ? b[i] : "(nothing)";
+    if (x != y) return "checkpoint \"" + x + "\", input \"" + y + "\"";
+  }
+  return "";
+}
+
+[[noreturn]] void refuse(const std::string& path, const std::string& what) {
+  throw Error(path + ": " + what +
+              "; refused (not a checkpoint of this input's model, or corrupt)");
+}
+
+void check_scalars(const output::Checkpoint& c, const std::string& path) {
+  auto need = [&](bool ok, const char* name, double v, const char* allowed) {
+    if (!ok)
+      refuse(path, std::string("the checkpoint's ") + name + " = " + std::to_string(v) +
+                       " is not " + allowed);
+  };
+  need(std::isfinite(c.t) && c.t >= 0, "t", c.t, "a finite time >= 0");
+  need(std::isfinite(c.dt) && c.dt > 0, "dt", c.dt, "a finite step > 0");
+  need(std::isfinite(c.last_h) && c.last_h >= 0, "last_h", c.last_h, "a finite step >= 0");
+  need(std::isfinite(c.newton_contraction), "newton_contraction", c.newton_contraction, "finite");
+  need(std::isfinite(c.nominal_dt) && c.nominal_dt > 0, "nominal_dt", c.nominal_dt,
+       "a finite step > 0");
+}
+
+void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
+  const std::size_t n = sim.model.X.size();
+  auto sized = [&](const std::vector<double>& v, const char* name, bool may_be_empty) {
+    if (v.size() != n && !(may_be_empty && v.empty()))
+      refuse(path, std::string("the checkpoint's ") + name + " has " + std::to_string(v.size()) +
+                       " values, the input's mesh needs " + std::to_string(n));
+    for (double x : v)
+      if (!std::isfinite(x))
+        refuse(path, std::string("the checkpoint's ") + name + " is not finite");
+  };
+  sized(c.u, "u", false);
+  sized(c.V, "V", false);
+  sized(c.last_increment, "last_increment", true);
+  if (c.active.size() % 5 != 0 || c.normal_force.size() != c.active.size() / 5)
+    refuse(path, "the checkpoint's active set has " + std::to_string(c.active.size()) +
+                     " values and " + std::to_string(c.normal_force.size()) +
+                     " normal forces (5 values and 1 force per active node)");
+}
+
+/// An integer in [0, n), or refused naming `what`.
+int index_in(double v, std::size_t n, const std::string& what, const std::string& path) {
+  if (!(v >= 0 && v < double(n) && v == std::floor(v)))
+    refuse(path, "the checkpoint's active set has " + what + " " + std::to_string(v) +
+                     " (allowed: 0 to " + std::to_string(long(n) - 1) + ")");
+  return static_cast<int>(v);
+}
+
+void check_active(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
+  static const std::vector<contact::Pair> none;
+  const auto& pairs = sim.contact ? sim.contact->pairs() : none;
+  for (std::size_t k = 0; k + 4 < c.active.size(); k += 5) {
+    const int slave = index_in(c.active[k], sim.model.num_nodes(), "node", path);
+    const auto& pair = pairs[index_in(c.active[k + 1], pairs.size(), "pair", path)];
+    index_in(c.active[k + 2], pair.facets.size(), "facet of pair " + pair.name, path);
+    if (!std::binary_search(pair.slaves.begin(), pair.slaves.end(), slave))
+      refuse(path, "the checkpoint's active node " + std::to_string(slave) +
+                       " is not a slave node of pair " + pair.name);
+    if (!std::isfinite(c.active[k + 3]) || !std::isfinite(c.active[k + 4]) ||
+        !std::isfinite(c.normal_force[k / 5]))
+      refuse(path, "the checkpoint's active node " + std::to_string(slave) +
+                       " has coordinates or a normal force that are not finite");
+  }
+}
+
+}  // namespace
+
+std::string model_fingerprint(const Simulation& sim) {
+  const auto& m = sim.model;
+  std::ostringstream os;
+  os.precision(17);
+  os << "nodes: " << m.num_nodes() << "\ntets: " << m.num_tets()
+     << "\nrigid nodes: " << m.rigid_X.size() / 3 << "\nintegrator: " << int(m.integrator)
+     << "\nbodies: " << m.bodies.size() << "\n";
+  for (const auto& b : m.bodies)
+    os << "body " << b.name << ": nodes " << b.node_end - b.node_begin << ", tets "
+       << b.tet_end - b.tet_begin << ", rigid " << b.rigid << ", young " << b.young << ", poisson "
+       << b.poisson << ", density " << b.density << "\n";
+  std::uint64_t h = 14695981039346656037ull;
+  hash_into(h, m.X);
+  hash_into(h, m.tets);
+  hash_into(h, m.rigid_X);
+  hash_into(h, m.fixed);
+  if (sim.contact) {
+    os << "pairs: " << sim.contact->pairs().size() << "\n";
+    for (const auto& p : sim.contact->pairs()) {
+      os << "pair " << p.name << ": "
+         << (p.kind == contact::Kind::frictionless ? "frictionless" : "full stick") << ", slaves "
+         << p.slaves.size() << ", facets " << p.facets.size() << ", master body " << p.master_body
+         << "\n";
+      hash_into(h, p.slaves);
+      hash_into(h, p.facets);
+    }
+  }
+  os << "geometry hash: " << hex(h) << "\n";
+  return os.str();
+}
+
+void check_checkpoint(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
+  const std::string diff = first_difference(c.model, model_fingerprint(sim));
+  if (!diff.empty()) refuse(path, "written for another model: " + diff);
+  check_scalars(c, path);
+  check_arrays(c, sim, path);
+  check_active(c, sim, path);
+}
+
+}  // namespace emc::app

@@ -1,0 +1,104 @@
+// The pass-through sublists (Belos, Ifpack2, MueLu) go to the packages unchanged: they are
+// tried once at setup, so that a value a package refuses is an input error (one line, before
+// any step) rather than an exception in the middle of the run, and names a package ignores
+// (typos) are reported.
+#include <BelosSolverFactory_Tpetra.hpp>
+#include <BelosTpetraAdapter.hpp>
+#include <cstdio>
+#include <regex>
+#include <sstream>
+
+#include "emcontact/linalg/linear_solver.hpp"
+
+namespace emc::linalg {
+namespace {
+
+using Teuchos::RCP;
+using Teuchos::rcp;
+
+/// A small SPD tridiagonal matrix, 6 rows (2 nodes of 3 dofs, as MueLu expects) per rank.
+RCP<Matrix> test_matrix(const RCP<const Comm>& comm) {
+  const GO n = 6 * comm->getSize();
+  auto map = rcp(new Map(n, 6, 0, comm));
+  auto A = rcp(new Matrix(map, 3));
+  for (LO l = 0; l < 6; ++l) {
+    const GO g = map->getGlobalElement(l);
+    std::vector<GO> cols{g};
+    std::vector<double> vals{4.0};
+    for (GO c : {g - 1, g + 1})
+      if (c >= 0 && c < n) {
+        cols.push_back(c);
+        vals.push_back(-1.0);
+      }
+    A->insertGlobalValues(g, Teuchos::arrayViewFromVector(cols),
+                          Teuchos::arrayViewFromVector(vals));
+  }
+  A->fillComplete();
+  return A;
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "\"" : ", \"") + n + "\"";
+  return s;
+}
+
+}  // namespace
+
+std::string one_line(const std::string& message) {
+  static const std::regex location("^\\s*\\S+:[0-9]+:\\s*$");
+  std::istringstream in(message);
+  std::string out;
+  for (std::string l; std::getline(in, l);) {
+    if (std::regex_match(l, location) || l.rfind("Throw number", 0) == 0 ||
+        l.rfind("Throw test that evaluated to true", 0) == 0)
+      continue;
+    const auto b = l.find_first_not_of(" \t\r");
+    if (b == std::string::npos) continue;
+    out += (out.empty() ? "" : " ") + l.substr(b);
+  }
+  if (out.size() > 300) out = out.substr(0, 297) + "...";
+  return out.empty() ? "(no message)" : out;
+}
+
+void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
+  const std::string where = file.empty() ? "" : file + ": ";
+  const auto A = test_matrix(comm);
+  std::vector<std::string> unused;
+  const std::string prec = prec_type_ == "muelu" ? "MueLu" : "Ifpack2";
+  try {
+    build_preconditioner(A, &unused);
+  } catch (const std::exception& e) {
+    throw InputError(where + "parameter \"Solver/Linear/" + prec + "\": " + prec +
+                     " refused it: " + one_line(e.what()) + "; allowed: parameters " + prec +
+                     " accepts (see its documentation)");
+  }
+  if (!unused.empty() && comm->getRank() == 0)
+    std::fprintf(stderr, "warning: %sSolver/Linear/Ifpack2: %s not known to Ifpack2 (typo?)\n",
+                 where.c_str(), quoted_list(unused).c_str());
+  const std::string name = type_ == "cg" ? "CG" : "GMRES";
+  try {
+    Belos::SolverFactory<double, MultiVector, Operator> factory;
+    auto solver = factory.create(name, belos_parameters(tol_));
+    std::vector<std::string> unknown;
+    const auto valid = solver->getValidParameters();
+    for (auto it = belos_.begin(); it != belos_.end(); ++it)
+      if (!valid->isParameter(belos_.name(it))) unknown.push_back(belos_.name(it));
+    if (!unknown.empty() && comm->getRank() == 0)
+      std::fprintf(stderr, "warning: %sSolver/Linear/Belos: %s not known to Belos %s (typo?)\n",
+                   where.c_str(), quoted_list(unknown).c_str(), name.c_str());
+    Vector b(A->getRowMap()), x(A->getRowMap());
+    b.putScalar(1.0);
+    bool converged = false;
+    std::string message;
+    belos_solve(A, b, x, tol_, converged, message);
+  } catch (const std::exception& e) {
+    prec_ = Teuchos::null;
+    throw InputError(where + "parameter \"Solver/Linear/Belos\": Belos " + name +
+                     " refused it: " + one_line(e.what()) +
+                     "; allowed: parameters Belos accepts (see its documentation)");
+  }
+  prec_ = Teuchos::null;  // the run's matrix gets its own
+}
+
+}  // namespace emc::linalg

@@ -1,0 +1,419 @@
+# Issue 18, "Hangs and crashes" and "Silent wrong results": runs that must end (no hang, no
+# crash, one line), time steps that cannot advance, SIGTERM, XML depth, untrusted checkpoints,
+# solver exceptions, non-regular files, restarts.
+
+# A contact case that gets going in a few steps (two blocks, full stick): $HERE/../regression.
+emc_contact_input() {
+  cp "$HERE/../regression/two_blocks.xml" "$1"
+}
+
+# --- an error on one rank ends every rank (no hang) ---
+
+hostile_two_ranks_output_error_on_rank0_ends_all() {
+  emc_good_input in.xml
+  echo "not a directory" >dirfile
+  expect_exit_within 60 1 "${MPIRUN[@]}" -np 2 "$EMC" in.xml --output dirfile
+  expect_err "error: .*dirfile"
+}
+
+hostile_two_ranks_output_under_a_file_ends_all() {
+  emc_good_input in.xml
+  echo "a file" >f
+  expect_exit_within 60 1 "${MPIRUN[@]}" -np 2 "$EMC" in.xml --output f/sub
+  expect_err "error: .*f/sub"
+}
+
+hostile_two_ranks_collective_error_one_line() {  # bad input on 2 ranks: one message, no abort
+  emc_good_input in.xml
+  expect_exit_within 60 1 "${MPIRUN[@]}" -np 2 "$EMC" in.xml --set Time/dt=-1
+  expect_err "Time/dt"
+  [ "$(grep -c '^error:' last.err)" -eq 1 ] || { echo "not one error line"; cat last.err; return 1; }
+  if grep -q MPI_ABORT last.err; then echo "aborted a collective error"; return 1; fi
+}
+
+# --- step sizes that cannot advance time ---
+
+hostile_dt_denormal_refused() {
+  emc_good_input in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/dt=4.9e-324 --output out
+  expect_err 'parameter "Time/dt".*at most 1e9 steps'
+  expect_short_err 1
+}
+
+hostile_dt_tiny_with_20_step_cuts_refused() {
+  emc_good_input in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/dt=1e-318 --set "Time/max step cuts=20" \
+    --output out
+  expect_err 'Time/dt'
+  expect_short_err 1
+}
+
+hostile_dt_huge_refused() {
+  emc_good_input in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/dt=1e200 --set Time/end=1e200 --output out
+  expect_err 'Time/(dt|end)'
+  expect_short_err 1
+}
+
+hostile_time_not_finite_refused() {
+  emc_good_input in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/end=inf --output out
+  expect_err 'Time/end'
+  expect_short_err 1
+}
+
+# --- SIGTERM: during setup a message; within a long step, it stops at the next iterate ---
+
+# wait_sigterm_caught PID: until PID has its SIGTERM handler (30 s at most).
+wait_sigterm_caught() {
+  for _ in $(seq 300); do
+    local mask
+    mask=$(awk '/^SigCgt:/ { print $2 }' "/proc/$1/status" 2>/dev/null) || return 1
+    [ -n "$mask" ] && [ $((16#$mask & 0x4000)) -ne 0 ] && return 0
+    sleep 0.1
+  done
+  return 1
+}
+
+hostile_sigterm_during_setup_says_so() {
+  emc_good_input in.xml
+  # a mesh that takes many seconds to generate
+  "$EMC" in.xml --set Bodies/block/Mesh/size=0.003 --output out >last.out 2>last.err &
+  local pid=$!
+  wait_sigterm_caught $pid || true
+  sleep 0.5
+  kill -TERM $pid
+  local rc=0
+  wait $pid || rc=$?
+  [ "$rc" -eq 1 ] || { echo "exit $rc, expected 1"; cat last.err; return 1; }
+  expect_err "stopped by SIGTERM during setup"
+  expect_short_err 1
+}
+
+hostile_sigterm_within_a_long_step_stops() {
+  emc_good_input in.xml
+  # every linear solve fails its residual check after 3000 iterations: the first step takes
+  # minutes of retries (20 cuts); SIGTERM must stop it at the next Newton iterate
+  "$EMC" in.xml --set "Bodies/block/Initial/velocity={1,0,0}" \
+    --set "Bodies/block/Initial/angular velocity={0,0,5}" --set Bodies/block/Mesh/size=0.01 \
+    --set "Solver/Linear/tolerance=1e-300" --set "Solver/Linear/max iterations=3000" \
+    --set "Time/max step cuts=20" --set Solver/Linear/preconditioner=none --output out \
+    >last.out 2>last.err &
+  local pid=$!
+  for _ in $(seq 300); do [ -f out/fields_00000000.h5 ] && break; sleep 0.1; done
+  sleep 3  # well into the first step
+  local t0=$SECONDS
+  kill -TERM $pid
+  local rc=0
+  wait $pid || rc=$?
+  echo "stopped $((SECONDS - t0)) s after SIGTERM, exit $rc"
+  [ "$rc" -eq 1 ] || { echo "exit $rc, expected 1"; cat last.err; return 1; }
+  [ $((SECONDS - t0)) -le 15 ] || { echo "took too long"; return 1; }
+  expect_err "stopped by SIGTERM after step 0"
+  test -s out/checkpoint.h5
+}
+
+# --- XML nesting ---
+
+hostile_xml_nesting_depth_refused() {
+  python3 - <<'PY'
+n = 10000
+with open("deep.xml", "w") as f:
+    f.write('<ParameterList name="x">' * n + '</ParameterList>' * n + "\n")
+PY
+  expect_exit_within 30 1 "$EMC" deep.xml --output out
+  expect_err "deep.xml: .*nested more than 64"
+  expect_short_err 1
+}
+
+# --- untrusted checkpoints ---
+
+# A checkpoint of the contact case with active contact: ck/checkpoint.h5 at step 6.
+emc_contact_checkpoint() {
+  emc_contact_input in.xml
+  "$EMC" in.xml --set Time/end=0.06 --set "Output/checkpoint every=6" --output ck >ck.log 2>&1
+  test -s ck/checkpoint.h5
+}
+
+hostile_checkpoint_byte_flips_refused_or_identical() {
+  emc_contact_checkpoint
+  cp -r ck ref
+  expect_exit 0 "$EMC" in.xml --set Time/end=0.08 --output ref --restart ref/checkpoint.h5
+  local size accepted=0 refused=0
+  size=$(stat -c %s ck/checkpoint.h5)
+  for k in $(seq 1 20); do
+    local pos=$((size * k / 21))
+    rm -rf f && cp -r ck f
+    python3 -c "
+import sys
+p, pos = sys.argv[1], int(sys.argv[2])
+b = bytearray(open(p, 'rb').read()); b[pos] ^= 0x5a; open(p, 'wb').write(bytes(b))" \
+      f/checkpoint.h5 $pos
+    local rc=0
+    timeout -k 5 60 "$EMC" in.xml --set Time/end=0.08 --output f --restart f/checkpoint.h5 \
+      >last.out 2>last.err || rc=$?
+    if [ $rc -eq 0 ]; then
+      cmp -s ref/monitors.csv f/monitors.csv || { echo "flip at $pos accepted, other rows"; return 1; }
+      accepted=$((accepted + 1))
+    elif [ $rc -eq 1 ]; then
+      refused=$((refused + 1))
+    else
+      echo "flip at $pos: exit $rc"; cat last.err; return 1
+    fi
+  done
+  echo "$accepted accepted (identical), $refused refused"
+}
+
+hostile_checkpoint_nan_time_refused() {
+  emc_good_input in.xml
+  "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
+  python3 - <<'PY'
+import struct
+p = "ck/checkpoint.h5"
+b = bytearray(open(p, "rb").read())
+# the scalars: step 2, t 0.02, dt 0.01: t becomes NaN
+key = struct.pack("<ddd", 2.0, 0.02, 0.01)
+i = b.find(key)
+assert i >= 0
+b[i + 8:i + 16] = struct.pack("<d", float("nan"))
+open(p, "wb").write(bytes(b))
+PY
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.05 --output ck --restart ck/checkpoint.h5
+  expect_err "checkpoint.h5: "
+  expect_short_err 1
+}
+
+hostile_checkpoint_nan_step_printed_as_number() {
+  emc_good_input in.xml
+  "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
+  python3 - <<'PY'
+import struct
+p = "ck/checkpoint.h5"
+b = bytearray(open(p, "rb").read())
+key = struct.pack("<ddd", 2.0, 0.02, 0.01)
+i = b.find(key)
+assert i >= 0
+b[i:i + 8] = struct.pack("<d", float("nan"))
+open(p, "wb").write(bytes(b))
+PY
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.05 --output ck --restart ck/checkpoint.h5
+  expect_err "step .*nan"
+  if grep -q -- "-9223372036854775808" last.err; then echo "NaN step printed as an integer"; return 1; fi
+  expect_short_err 1
+}
+
+hostile_checkpoint_of_another_model_refused() {
+  emc_good_input in.xml
+  "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
+  expect_exit_within 30 1 "$EMC" in.xml --set "Bodies/block/Mesh/upper corner={0.2, 0.1, 0.1}" \
+    --set Time/end=0.05 --output ck --restart ck/checkpoint.h5
+  expect_err "written for another model"
+  expect_short_err 1
+  expect_exit_within 30 1 "$EMC" in.xml --set Bodies/block/Material/young=2e5 --set Time/end=0.05 \
+    --output ck --restart ck/checkpoint.h5
+  expect_err "written for another model.*young"
+}
+
+hostile_checkpoint_other_contact_master_refused() {
+  emc_contact_checkpoint
+  # the master body moves (the "ground"): same sizes, same slave, other coordinates
+  expect_exit_within 30 1 "$EMC" in.xml --set "Bodies/B/Mesh/lower corner={0.22, 0.08, 0.05}" \
+    --set "Bodies/B/Mesh/upper corner={0.42, 0.28, 0.25}" --set Time/end=0.08 \
+    --output ck --restart ck/checkpoint.h5
+  expect_err "written for another model"
+  expect_short_err 1
+}
+
+# --- solver exceptions ---
+
+hostile_belos_num_blocks_zero_one_line() {
+  emc_good_input in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set "Solver/Linear/Belos/Num Blocks=0" --output out
+  expect_err 'Solver/Linear/Belos.*Num Blocks'
+  expect_short_err 1
+}
+
+hostile_ifpack2_bad_value_one_line() {
+  emc_good_input in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set "Solver/Linear/Ifpack2/fact: iluk level-of-fill=abc" \
+    --output out
+  expect_err 'Solver/Linear/Ifpack2'
+  expect_short_err 1
+}
+
+hostile_young_1e308_fails_as_a_step() {
+  emc_good_input in.xml
+  expect_exit_within 60 1 "$EMC" in.xml --set Bodies/block/Material/young=1e308 \
+    --set "Bodies/block/Initial/velocity={1,0,0}" \
+    --set "Bodies/block/Initial/angular velocity={0,0,5}" --output out
+  expect_err 'step 1 .*could not be solved'
+  expect_short_err 2
+  if grep -q "Throw number" last.err; then echo "a Trilinos dump"; return 1; fi
+}
+
+hostile_pass_through_typos_warned() {
+  emc_good_input in.xml
+  expect_exit_within 60 0 "$EMC" in.xml --set "Solver/Linear/Belos/Maximum Iteratons=5" \
+    --set "Solver/Linear/Ifpack2/fact: iluk levl-of-fill=1" --output out
+  expect_err 'warning: .*Belos.*"Maximum Iteratons"'
+  expect_err 'warning: .*Ifpack2.*"fact: iluk levl-of-fill"'
+}
+
+# --- files that are not regular files ---
+
+hostile_fifo_input_refused() {
+  mkfifo in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --output out
+  expect_err "in.xml: .*FIFO.*not a regular file"
+  expect_short_err 1
+}
+
+hostile_directory_and_device_input_refused() {
+  mkdir in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --output out
+  expect_err "in.xml: .*directory, not a regular file"
+  expect_exit_within 30 1 "$EMC" /dev/zero --output out
+  expect_err "/dev/zero: .*device, not a regular file"
+  expect_short_err 1
+}
+
+hostile_fifo_restart_refused() {
+  emc_good_input in.xml
+  mkfifo ck.h5
+  expect_exit_within 30 1 "$EMC" in.xml --output out --restart ck.h5
+  expect_err "ck.h5: .*FIFO.*not a regular file"
+  expect_short_err 1
+}
+
+hostile_mesh_file_not_regular_refused() {
+  emc_good_input in.xml
+  mkdir m.msh
+  mkfifo p.msh
+  for m in m.msh p.msh /dev/zero; do
+    expect_exit_within 30 1 "$EMC" in.xml --set Bodies/block/Mesh/type=file \
+      --set "Bodies/block/Mesh/file=$m" --output out
+    expect_err "not a regular file"
+    if grep -q "does not exist" last.err; then echo "$m: says does not exist"; return 1; fi
+    expect_short_err 1
+  done
+}
+
+# --- restarts that would silently differ ---
+
+hostile_restart_changed_dt_applied() {
+  emc_good_input in.xml
+  "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
+  expect_exit 0 "$EMC" in.xml --set Time/dt=0.005 --set Time/end=0.04 --output ck \
+    --restart ck/checkpoint.h5
+  expect_err "Time/dt changed from 0.01.* to 0.005.*from step 3 on"
+  # rows after the checkpoint (steps 3..) have dt 0.005
+  awk -F, 'NR > 4 && $15 != 0.005 { bad = 1; print } END { exit bad }' ck/monitors.csv
+  [ "$(tail -1 ck/monitors.csv | cut -d, -f1)" = 6 ]
+}
+
+hostile_restart_past_end_refused() {
+  emc_good_input in.xml
+  "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
+  expect_exit_within 30 1 "$EMC" in.xml --output ck --restart ck/checkpoint.h5
+  expect_err "at or past Time/end"
+  expect_short_err 1
+}
+
+hostile_restart_monitors_missing_row_refused() {
+  emc_good_input in.xml
+  "$EMC" in.xml --set Time/end=0.04 --set "Output/checkpoint every=4" --output ck >ck.log 2>&1
+  sed -i '/^2,/d' ck/monitors.csv
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.06 --output ck --restart ck/checkpoint.h5
+  expect_err "monitors.csv: no row for step 2"
+  expect_short_err 1
+}
+
+# --- messages ---
+
+hostile_long_refused_value_truncated() {
+  emc_good_input good.xml
+  python3 - <<'PY'
+s = open("good.xml").read()
+long = '<Parameter name="integrator" type="string" value="' + "x" * 1000000 + '"/>'
+open("in.xml", "w").write(s.replace('<ParameterList name="Time">', '<ParameterList name="Time">' + long, 1))
+PY
+  expect_exit_within 30 1 "$EMC" in.xml --output out
+  expect_err 'Time/integrator'
+  local bytes
+  bytes=$(wc -c <last.err)
+  [ "$bytes" -lt 2000 ] || { echo "stderr has $bytes bytes"; return 1; }
+}
+
+# --- restarts identical to the uninterrupted run ---
+
+hostile_restart_after_sigterm_identical() {
+  emc_contact_input in.xml
+  local opts=(--set Time/end=0.3 --set "Output/checkpoint every=4")
+  expect_exit 0 "$EMC" in.xml "${opts[@]}" --output A
+  "$EMC" in.xml "${opts[@]}" --output C >c.log 2>&1 &
+  local pid=$!
+  for _ in $(seq 600); do
+    [ -f C/monitors.csv ] && [ "$(wc -l <C/monitors.csv)" -ge 8 ] && break
+    sleep 0.05
+  done
+  kill -TERM $pid
+  local rc=0
+  wait $pid || rc=$?
+  echo "SIGTERM: exit $rc: $(tail -1 c.log)"
+  [ "$rc" -eq 1 ] || return 1
+  expect_exit 0 "$EMC" in.xml "${opts[@]}" --output C --restart C/checkpoint.h5
+  cmp A/monitors.csv C/monitors.csv
+}
+
+hostile_extended_run_identical() {
+  emc_contact_input in.xml
+  # 8 steps of 0.01 sum to 0.08 - 5e-18: the last step to end = 0.08 is dt within round-off
+  expect_exit 0 "$EMC" in.xml --set Time/end=0.12 --set "Output/checkpoint every=8" --output A
+  expect_exit 0 "$EMC" in.xml --set Time/end=0.08 --set "Output/checkpoint every=8" --output B
+  expect_exit 0 "$EMC" in.xml --set Time/end=0.12 --set "Output/checkpoint every=8" --output B \
+    --restart B/checkpoint.h5
+  cmp A/monitors.csv B/monitors.csv
+}
+
+# --- contact parameters whose scale silently disabled contact ---
+
+hostile_max_penetration_beyond_master_refused() {
+  cp "$HERE/../regression/drop.xml" in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set "Contact/block on ground/max penetration=1e100" \
+    --output out
+  expect_err 'parameter "Contact/block on ground/max penetration".*larger than the master'
+  expect_short_err 1
+}
+
+hostile_huge_rigid_plane_refused() {
+  cp "$HERE/../regression/drop.xml" in.xml
+  expect_exit_within 30 1 "$EMC" in.xml --set "Bodies/ground/Mesh/half width=1e100" --output out
+  expect_err 'parameter "Bodies/ground/Mesh".*more than 1e6 times'
+  expect_short_err 1
+}
+
+# A checkpoint of good_box.xml at step 2 written before checkpoints had a fingerprint and a
+# checksum (old_checkpoint_good_box.h5, with its monitors.csv): refused, saying why.
+hostile_checkpoint_without_fingerprint_refused() {
+  emc_good_input in.xml
+  mkdir old
+  cp "$HERE/old_checkpoint_good_box.h5" old/checkpoint.h5
+  cp "$HERE/old_checkpoint_good_box.csv" old/monitors.csv
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.04 --output old \
+    --restart old/checkpoint.h5
+  expect_err "old/checkpoint.h5: written by an older emcontact"
+  expect_short_err 1
+}
+
+hostile_long_override_truncated() {
+  emc_good_input in.xml
+  local long
+  long=$(python3 -c 'print("x" * 100000)')
+  for o in "Time/integrator=$long" "Time/dt=9$long" "Time/$long=1" "$long/a=1"; do
+    expect_exit_within 30 1 "$EMC" in.xml --set "$o" --output out
+    expect_short_err 1
+    local bytes
+    bytes=$(wc -c <last.err)
+    [ "$bytes" -lt 2000 ] || { echo "stderr has $bytes bytes for --set ${o:0:20}..."; return 1; }
+  done
+}
