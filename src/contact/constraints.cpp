@@ -32,16 +32,10 @@ bool ActiveConstraints::use(std::vector<Active>* trial) {
   return true;
 }
 
-// The start iterate satisfies every active constraint (the elimination maps increments only):
-// full stick by stick_project (§4; a pass per level of a chain), frictionless by update steps
-// 2-3 (§5: (a) and (b)). A re-solve of the active-set loop may so start from the last solution
-// (docs/THEORY.md §6.4).
+// §5: the start iterate is projected (update steps 2-3), so that it satisfies (a) and (b).
 void ActiveConstraints::start(const Vector& u0, Vector& u1) {
-  const auto u0all = contact_.replicate(u0);
-  for (int pass = 0; pass < 4; ++pass)
-    if (contact_.global_count(contact_.stick_project(*trial_, u0all, u1)) == 0) break;
   if (!frictionless_) return;
-  x0_ = positions(contact_.disc_model(), u0all);
+  x0_ = positions(contact_.disc_model(), contact_.replicate(u0));
   after_update(u0, u1);
 }
 

@@ -335,33 +335,6 @@ void Contact::frictionless_project(std::vector<Active>& active, const std::vecto
   }
 }
 
-// docs/THEORY.md §6.4: a start iterate that satisfies every full-stick constraint,
-// x_{s,n+1} - x_{s,n} = N (x_{m,n+1} - x_{m,n}) (§4), for a re-solve started from the last
-// solution. Rigid and fixed master nodes do not move. Collective (replicates u1).
-int Contact::stick_project(const std::vector<Active>& active, const std::vector<double>& u0all,
-                           Vector& u1) const {
-  const auto u1all = replicate(u1);
-  const auto& m = disc_.model();
-  const auto& map = *disc_.owned_map();
-  auto uv = u1.getLocalViewHost(Tpetra::Access::ReadWrite);
-  int moved = 0;
-  for (const auto& a : active) {
-    if (pairs_[a.pair].kind != Kind::full_stick) continue;
-    const auto& f = pairs_[a.pair].facets[a.facet];
-    double N[3];
-    kernels::facet_shape(a.xi, N);
-    for (int c = 0; c < 3; ++c) {
-      double v = u0all[3 * a.slave + c];
-      for (int i = 0; i < 3; ++i)
-        if (f[i] < m.num_nodes() && !m.fixed[f[i]])
-          v += N[i] * (u1all[3 * f[i] + c] - u0all[3 * f[i] + c]);
-      if (v != u1all[3 * a.slave + c]) ++moved;
-      uv(map.getLocalElement(fem::dof_gid(a.slave, c)), 0) = v;
-    }
-  }
-  return moved;
-}
-
 std::vector<std::pair<GO, double>> Contact::dummy_values(const Matrix& A,
                                                          const std::vector<GO>& dummies) const {
   Vector d(A.getRowMap());

@@ -91,26 +91,16 @@ Hit FacetGrid::locate(const double y[3], int current, double hyst) const {
   }
   Hit best, least;
   double least_out = 1e300;
-  int d[3];
-  const int c = cell_of(y, d);
-  if (c >= 0)
-    for (int k = cell_start_(c); k < cell_start_(c + 1); ++k) {
-      const int f = cell_facets_(k);
-      const double* b = data_[f].box;
-      if (y[0] < b[0] || y[0] > b[3] || y[1] < b[1] || y[1] > b[4] || y[2] < b[2] || y[2] > b[5])
-        continue;
-      Hit h;
-      if (!cpp(f, y, h)) continue;
-      const double out = kernels::facet_outside(h.xi);
-      if (out <= tol && (best.facet < 0 || std::fabs(h.gap) < std::fabs(best.gap) - 1e-14 * h_)) {
-        best = h;
-        best.inside = true;
-      }
-      if (out < least_out) {
-        least_out = out;
-        least = h;
-      }
+  for_each_candidate(y, [&](const Hit& h, double out) {
+    if (out <= tol && (best.facet < 0 || std::fabs(h.gap) < std::fabs(best.gap) - 1e-14 * h_)) {
+      best = h;
+      best.inside = true;
     }
+    if (out < least_out) {
+      least_out = out;
+      least = h;
+    }
+  });
   if (best.facet >= 0 || current < 0) return best;
   if (least.facet < 0) {  // nothing near: keep the current facet, extrapolated
     cpp(current, y, least);

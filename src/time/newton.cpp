@@ -53,10 +53,9 @@ double Newton::linear_tolerance(const std::vector<double>& r, double floor) cons
   return std::min(eta_max, sigma * std::max(next, floor) / r.back());
 }
 
-NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                           double r_ref) {
-  last_ = iterate(u0, V0, dt, u1, r_ref);
-  if (r_ref <= 0 && last_.residuals.size() >= 2 && last_.residuals[0] > 0)
+NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
+  last_ = iterate(u0, V0, dt, u1);
+  if (last_.residuals.size() >= 2 && last_.residuals[0] > 0)
     contraction_ = last_.residuals[1] / (last_.residuals[0] * last_.residuals[0]);
   static const bool trace = std::getenv("EMC_NEWTON_TRACE") != nullptr;
   if (trace && disc_.comm()->getRank() == 0) {  // debugging aid: residual history per solve
@@ -69,8 +68,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
   return last_;
 }
 
-NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                             double r_ref) {
+NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
   auto& t_asm = assembly_timer();
   auto& t_elim = elimination_timer();
   auto& t_solve = linear_solve_timer();
@@ -121,14 +119,12 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       res.failure = "residual is not finite at Newton iterate " + std::to_string(it);
       return res;
     }
-    // a warm start (a re-solve of the step from its last solution) keeps the step's first
-    // residual r_ref as the reference of the relative tolerance
-    if (it == 0) r0 = std::max(r, r_ref);
+    if (it == 0) r0 = r;
     // ALGORITHM.md §1: the tolerance never sits below the round-off of g's terms
     const double floor = std::max(opt_.atol, 100 * eps * scale.norm2());
     const double target = std::max(opt_.rtol * r0, floor);
     res.floor = floor;
-    if (r <= target && (it > 0 || r <= floor || r_ref > 0)) {
+    if (r <= target && (it > 0 || r <= floor)) {
       res.converged = true;
       return res;
     }

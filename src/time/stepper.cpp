@@ -50,7 +50,6 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   std::set<int> released, pinned;
   rep.contact = contact::StepContactStats{};
   std::vector<double> fN;
-  double r_first = 0;  // the first residual of the step's first solve
   for (int rep_no = 0;; ++rep_no) {
     apply(trial);
     // §1: the start iterate must satisfy every constraint. With no active contact, the last
@@ -58,22 +57,17 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
     // flips every step) scaled to h does (fixed dofs never move) and saves a Newton
     // iteration in smooth motion; while the last step needed more than 2 iterations (a body
     // ringing after an impact) it costs one, so u_n is used then, as with active contact.
-    // A re-solve of the active-set loop (§6.4) starts from the last solution, projected on the
-    // new set's constraints by the hooks' start (docs/THEORY.md §6.4).
-    if (rep_no == 0) {
-      u1.assign(u0);
-      if (s_.last_increment && s_.last_h > 0 && s_.last_iterations <= 2 &&
-          (!contact_ || contact_->global_count(static_cast<int>(trial.size())) == 0))
-        u1.update(h / s_.last_h, *s_.last_increment, 1.0);
-    }
-    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1, rep_no == 0 ? 0.0 : r_first);
+    u1.assign(u0);
+    if (s_.last_increment && s_.last_h > 0 && s_.last_iterations <= 2 &&
+        (!contact_ || contact_->global_count(static_cast<int>(trial.size())) == 0))
+      u1.update(h / s_.last_h, *s_.last_increment, 1.0);
+    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1);
     rep.newton_iterations += nr.iterations;
     rep.linear_iterations += nr.linear_iterations;
     if (!nr.converged) {
       rep.last_failure = nr.failure;
       return false;
     }
-    if (rep_no == 0 && !nr.residuals.empty()) r_first = nr.residuals.front();
     if (!contact_) return true;
     Teuchos::TimeMonitor tm(contact_timer());
     const auto x0 = contact::positions(contact_->disc_model(), contact_->replicate(u0));

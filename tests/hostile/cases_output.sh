@@ -145,7 +145,7 @@ hostile_two_runs_one_directory_locked() {
   [ $rc -eq 0 ] && { expect_short_err 1 && expect_err "in use" || rc=1; }
   kill -0 $pid 2>/dev/null || { echo "the first run died: $(tail -2 first.log)"; rc=1; }
   kill -KILL $pid 2>/dev/null
-  wait $pid 2>/dev/null
+  wait $pid 2>/dev/null || true
   return $rc
 }
 

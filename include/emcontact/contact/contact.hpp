@@ -91,11 +91,6 @@ class Contact {
   void frictionless_project(std::vector<Active>& active, const std::vector<double>& x0,
                             const std::vector<double>& x1, Vector& u1) const;
 
-  /// Sets my active full-stick slaves' displacements in u1 so that their constraint holds
-  /// against u1's master displacements (§4); returns how many dofs moved. Collective.
-  int stick_project(const std::vector<Active>& active, const std::vector<double>& u0all,
-                    Vector& u1) const;
-
   /// beta = tr(A_ss)/3 for each dummy's slave (eq. 44), from A's diagonal.
   std::vector<std::pair<GO, double>> dummy_values(const Matrix& A,
                                                   const std::vector<GO>& dummies) const;

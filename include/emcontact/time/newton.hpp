@@ -39,10 +39,7 @@ class Newton {
          NewtonOptions opt);
 
   /// Solves eq. 20 for u1 given (u0, V0) at t_n; u1 holds the start guess on entry.
-  /// Newton from the start iterate u1 (projected by the hooks). r_ref > 0: a warm start (the
-  /// step solved again from its last solution): the relative tolerance refers to r_ref, the
-  /// first residual of the step's first solve, and u1 may be accepted as it is.
-  NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1, double r_ref = 0);
+  NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1);
 
   /// Constraints that change inside Newton (contact); null: only the fixed elimination.
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
@@ -58,7 +55,7 @@ class Newton {
   const Vector& last_residual() const { return *g_; }
 
  private:
-  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1, double r_ref);
+  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1);
   double linear_tolerance(const std::vector<double>& r, double floor) const;
   /// C r_k^2 with C = r_k / r_{k-1}^2 (or the last step's); < 0 when there is no estimate.
   double predicted_next(const std::vector<double>& r) const;
