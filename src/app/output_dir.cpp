@@ -10,14 +10,6 @@
 namespace emc::app {
 namespace {
 
-/// The directory part of `path` ("." if it has none).
-std::string parent_directory(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
 /// Whether `a` and `b` name the same existing directory.
 bool same_directory(const std::string& a, const std::string& b) {
   struct stat sa {
@@ -39,7 +31,7 @@ std::string short_list(const std::vector<std::string>& names) {
 OutputDirectory::OutputDirectory(const Options& opt, const Teuchos::ParameterList& output,
                                  const Comm& comm) {
   path_ = opt.output_dir.empty() ? output.get<std::string>("directory") : opt.output_dir;
-  if (!opt.restart.empty()) source_ = parent_directory(opt.restart);
+  if (!opt.restart.empty()) source_ = output::parent_directory(opt.restart);
   if (path_.empty())
     throw InputError(opt.input +
                      ": parameter 'Output/directory': empty; allowed: a directory name "

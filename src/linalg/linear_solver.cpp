@@ -3,7 +3,6 @@
 #include <BelosSolverFactory_Tpetra.hpp>
 #include <BelosTpetraAdapter.hpp>
 #include <Teuchos_TimeMonitor.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -27,7 +26,8 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
   if (type_ == "klu2" && comm->getSize() > 1)
     throw InputError(
         "Solver/Linear/type = klu2 runs on one rank only (Debian's Amesos2 KLU2 is wrong on "
-        "2+ ranks); allowed on " + std::to_string(comm->getSize()) + " ranks: gmres, cg");
+        "2+ ranks); allowed on " +
+        std::to_string(comm->getSize()) + " ranks: gmres, cg");
   if (type_ != "klu2") check_pass_through(comm, file);
 }
 

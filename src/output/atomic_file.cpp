@@ -19,14 +19,6 @@ Error os_error(const std::string& what, const std::string& path, int err) {
   return Error(what + " '" + path + "': " + std::strerror(err));
 }
 
-/// The directory part of `path` ("." if it has none).
-std::string parent_directory(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
 /// Writes all of `content` to `fd`, retrying on EINTR and short writes. Returns 0 or errno.
 int write_all(int fd, const std::string& content) {
   const char* p = content.data();
@@ -54,6 +46,14 @@ void sync_directory(const std::string& dir) {
 
 }  // namespace
 
+/// The directory part of `path` ("." if it has none).
+std::string parent_directory(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
 void atomic_write(const std::string& path, const std::string& content) {
   const TempFile tmp = create_temp(path);
   int err = write_all(tmp.fd, content);
@@ -68,23 +68,6 @@ void atomic_write(const std::string& path, const std::string& content) {
     err = errno;
     ::unlink(tmp.name.c_str());
     throw os_error("cannot rename '" + tmp.name + "' to", path, err);
-  }
-  sync_directory(parent_directory(path));
-}
-
-void atomic_commit(const std::string& tmp_path, const std::string& path) {
-  int err = 0;
-  const int fd = ::open(tmp_path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) {
-    err = errno;
-  } else {
-    if (::fsync(fd) != 0) err = errno;
-    ::close(fd);
-  }
-  if (err == 0 && ::rename(tmp_path.c_str(), path.c_str()) != 0) err = errno;
-  if (err != 0) {
-    ::unlink(tmp_path.c_str());
-    throw os_error("cannot commit '" + tmp_path + "' to", path, err);
   }
   sync_directory(parent_directory(path));
 }

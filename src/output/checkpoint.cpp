@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "emcontact/error.hpp"
-#include "emcontact/output/hdf5_file.hpp"
 #include "emcontact/input/files.hpp"
+#include "emcontact/output/hdf5_file.hpp"
 #include "src/output/checkpoint_meta.hpp"
 
 namespace emc::output {

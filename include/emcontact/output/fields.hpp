@@ -10,9 +10,9 @@ namespace emc::output {
 struct FieldFrame {
   long step = 0;
   double time = 0;
-  std::vector<double> displacement;  ///< 3 per node
-  std::vector<double> velocity;      ///< 3 per node
-  std::vector<double> von_mises;     ///< 1 per tet (Cauchy stress at t_n)
+  std::vector<double> displacement;    ///< 3 per node
+  std::vector<double> velocity;        ///< 3 per node
+  std::vector<double> von_mises;       ///< 1 per tet (Cauchy stress at t_n)
   std::vector<double> contact_status;  ///< 1 per node: 1 active slave, 0 otherwise (or empty)
   std::vector<double> normal_force;    ///< 1 per node: f_N of an active slave (or empty)
 };

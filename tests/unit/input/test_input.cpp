@@ -598,7 +598,8 @@ TEST(InputFiles, BadInputsAreRefusedByTheInputModule) {
 TEST(InputDocs, TablesListEveryParameter) {
   const std::string md = emc::input::schema_markdown();
   for (const char* row :
-       {"| `dt` | double | `0.01` | > 0 and <= 1e30 |", "| `integrator` | string | `energy-momentum` |",
+       {"| `dt` | double | `0.01` | > 0 and <= 1e30 |",
+        "| `integrator` | string | `energy-momentum` |",
         "| `max step cuts` | int | `6` | from 0 to 20 |",
         "| `poisson` | double | `0.3` | >= 0 and < 0.5 |",
         "| `velocity` | Array(double) | `{0, 0, 0}` | 3 numbers |", "| `Belos` | sublist |",

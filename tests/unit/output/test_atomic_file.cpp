@@ -1,4 +1,4 @@
-// atomic_write / atomic_commit / make_directory.
+// atomic_write / parent_directory / make_directory.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -54,25 +54,11 @@ TEST(AtomicWrite, MissingDirectoryThrowsNamingPathAndOsError) {
   EXPECT_TRUE(list_dir(dir.path()).empty());
 }
 
-TEST(AtomicCommit, RenamesTempOverTarget) {
-  TempDir dir;
-  const std::string tmp = dir / "b.bin.tmp.1", path = dir / "b.bin";
-  atomic_write(path, "old");
-  std::ofstream(tmp) << "new";
-  atomic_commit(tmp, path);
-  EXPECT_EQ(slurp(path), "new");
-  EXPECT_EQ(list_dir(dir.path()), std::vector<std::string>{"b.bin"});
-}
-
-TEST(AtomicCommit, MissingTempThrowsNamingPath) {
-  TempDir dir;
-  const std::string path = dir / "c.bin";
-  try {
-    atomic_commit(dir / "c.bin.tmp.1", path);
-    FAIL() << "no exception";
-  } catch (const emc::Error& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-  }
+TEST(ParentDirectory, OfRelativeAbsoluteAndBareNames) {
+  EXPECT_EQ(parent_directory("out/monitors.csv"), "out");
+  EXPECT_EQ(parent_directory("/checkpoint.h5"), "/");
+  EXPECT_EQ(parent_directory("checkpoint.h5"), ".");
+  EXPECT_EQ(parent_directory("a/b/c.h5"), "a/b");
 }
 
 TEST(MakeDirectory, CreatesParentsAndIsIdempotent) {
