@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/files.hpp"
 #include "emcontact/output/atomic_file.hpp"
 
 namespace emc::output {
@@ -190,6 +191,7 @@ void MonitorWriter::flush(bool force, double min_seconds) {
 }
 
 std::vector<MonitorRow> read_monitors(const std::string& path) {
+  input::check_regular_file(path, "monitors file");  // a FIFO would block the read
   std::ifstream in(path);
   if (!in) throw Error("cannot open monitors file '" + path + "'");
   std::string line;

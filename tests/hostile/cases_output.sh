@@ -205,3 +205,15 @@ hostile_failed_monitors_write_stops_cleanly() {
   if ls out | grep -q '\.tmp\.'; then echo "temporary left: $(ls out)"; return 1; fi
   [ "$(tail -c 1 out/monitors.csv | od -An -c | tr -d ' ')" = '\n' ] || { echo "monitors.csv cut"; return 1; }
 }
+
+# A FIFO planted as monitors.csv next to the checkpoint a restart reads: refused at once (it
+# blocked the restart forever), not read.
+hostile_restart_monitors_fifo_refused() {
+  emc_good_input in.xml
+  expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" --set Output/every=0 \
+    --set "Output/checkpoint every=1" --output out || return 1
+  rm out/monitors.csv && mkfifo out/monitors.csv
+  expect_exit 1 "$EMC" in.xml "${EMC_QUIET[@]}" --set Time/end=0.03 --restart out/checkpoint.h5 \
+    --output branch || return 1
+  expect_short_err 1 && expect_err "monitors.csv.*FIFO" || return 1
+}
