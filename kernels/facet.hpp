@@ -87,7 +87,8 @@ KOKKOS_INLINE_FUNCTION bool facet_cpp(const double y[3], const double xm[3][3], 
   return facet_cpp(y, xm, facet_metric(xm), xi, gap);
 }
 
-/// The point of the facet closest to the plane point x(xi) (the metric g_ab of tau_xi, tau_eta):
+/// The point of the facet closest to the plane point x(xi) (docs/THEORY.md §6.3: the xi of an
+/// activated node is clamped to its facet) (the metric g_ab of tau_xi, tau_eta):
 /// xi itself when inside, else its projection on the nearest edge, clamped to the edge's ends.
 KOKKOS_INLINE_FUNCTION void facet_clamp(const FacetMetric& m, double xi[2]) {
   if (facet_outside(xi) <= 0) return;

@@ -66,34 +66,32 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
     const EntryRule rule = entry_rule(pr);
     const int ns = static_cast<int>(mine.size());
     std::vector<Active> hit(ns);
-    Kokkos::parallel_for(
-        "emcontact::contact::detect", Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, ns),
-        [&, p](const int k) {
-          const int s = mine[k];
-          if (busy.count(s)) return;
-          double n_s[3];
-          slave_normal(pr, s, x1, n_s);
-          const Hit h1 = entered_facet(grid1, pr, x0, x1, s, n_s, rule);
-          if (h1.facet < 0) return;
-          double xm0[3][3], xm1[3][3], y[3];
-          for (int a = 0; a < 3; ++a)
-            for (int i = 0; i < 3; ++i) {
-              xm0[a][i] = x0[3 * pr.facets[h1.facet][a] + i];
-              xm1[a][i] = x1[3 * pr.facets[h1.facet][a] + i];
-            }
-          if (pr.kind == Kind::frictionless)  // the trial mid-point on the facet at n+1/2
-            for (int i = 0; i < 3; ++i) {
-              y[i] = 0.5 * (x0[3 * s + i] + x1[3 * s + i]);
-              for (int a = 0; a < 3; ++a) xm0[a][i] = 0.5 * (xm0[a][i] + xm1[a][i]);
-            }
-          else  // full stick: x_{s,n} on the facet at t_n
-            for (int i = 0; i < 3; ++i) y[i] = x0[3 * s + i];
-          const kernels::FacetMetric m = kernels::facet_metric(xm0);
-          double xi[2], gap;
-          if (!kernels::facet_cpp(y, xm0, m, xi, gap)) return;
-          kernels::facet_clamp(m, xi);
-          hit[k] = Active{s, static_cast<int>(p), h1.facet, {xi[0], xi[1]}, false};
-        });
+    Kokkos::parallel_for("emcontact::contact::detect",
+                         Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, ns),
+                         [&, p](const int k) {
+                           const int s = mine[k];
+                           if (busy.count(s)) return;
+                           double n_s[3];
+                           slave_normal(pr, s, x1, n_s);
+                           const Hit h1 = entered_facet(grid1, pr, x0, x1, s, n_s, rule);
+                           if (h1.facet < 0) return;
+                           // xf: the facet where xi is taken, at t_n (stick) or at n+1/2
+                           // (frictionless)
+                           double xf[3][3], y[3];
+                           const bool mid = pr.kind == Kind::frictionless;
+                           auto at = [&](int n, int i) {
+                             return mid ? 0.5 * (x0[3 * n + i] + x1[3 * n + i]) : x0[3 * n + i];
+                           };
+                           for (int i = 0; i < 3; ++i) {
+                             y[i] = at(s, i);
+                             for (int a = 0; a < 3; ++a) xf[a][i] = at(pr.facets[h1.facet][a], i);
+                           }
+                           const kernels::FacetMetric m = kernels::facet_metric(xf);
+                           double xi[2], gap;
+                           if (!kernels::facet_cpp(y, xf, m, xi, gap)) return;
+                           kernels::facet_clamp(m, xi);
+                           hit[k] = Active{s, static_cast<int>(p), h1.facet, {xi[0], xi[1]}, false};
+                         });
     for (const auto& a : hit)
       if (a.slave >= 0) {
         found.push_back(a);
@@ -327,7 +325,7 @@ void Contact::frictionless_project(std::vector<Active>& active, const std::vecto
     // kept with the extrapolated xi, up to the edge extension of activation (§6.3) so that a
     // node is not released where it would be caught again; beyond it released at the end of
     // the step
-    a.off = out > EntryRule{}.edge;
+    a.off = out > entry_rule(pairs_[a.pair]).edge;
     a.xi[0] = xi[0];
     a.xi[1] = xi[1];
     for (int c = 0; c < 3; ++c)
