@@ -39,16 +39,56 @@ KOKKOS_INLINE_FUNCTION double frictionless_dN(int i, int k) {
   return i == 0 ? -1.0 : (i == k + 1 ? 1.0 : 0.0);
 }
 
+/// Pt's slave rows when step 3 closes the gap at t_{n+1} (docs/THEORY.md §7.3): step 3 moves
+/// x_{s,n+1} along n_{n+1/2} until phi = (x_{s,n+1} - x_{m1,n+1}) . n_{n+1} = 0, so at a
+/// projected state (phi = 0) du_s = N du_m + tau_k dq_k - n_{n+1/2} dphi / (n_{n+1/2} . n_{n+1}),
+/// dphi = (tau_{k,n+1/2} . n_{n+1}) dq_k + b . dn_{n+1}, b = x_{s,n+1} - N x_{m,n+1} (in the
+/// facet's plane at n+1), dn_{n+1} = (I - n n^T) dc / |c| at n+1 with dtau_xi = du_m2 - du_m1,
+/// dtau_eta = du_m3 - du_m1 (xi drops out: phi does not depend on it). f: the facet at n+1/2.
+KOKKOS_INLINE_FUNCTION bool frictionless_closed_right_factor(const double xs1[3],
+                                                             const double xm0[3][3],
+                                                             const double xm1[3][3],
+                                                             const double N[3], const Facet& f,
+                                                             FrictionlessBlocks& b) {
+  const Facet f1 = facet(xm1);
+  double d = 0, bv[3], bn = 0;
+  for (int c = 0; c < 3; ++c) {
+    d += f.n[c] * f1.n[c];
+    bv[c] = xs1[c] - N[0] * xm1[0][c] - N[1] * xm1[1][c] - N[2] * xm1[2][c];
+    bn += bv[c] * f1.n[c];
+  }
+  if (!(f1.area2 > 0) || !(d > 0)) return false;
+  double sp[3];
+  for (int c = 0; c < 3; ++c) sp[c] = (bv[c] - bn * f1.n[c]) / f1.area2;
+  const double w1[3] = {f1.t2[1] * sp[2] - f1.t2[2] * sp[1], f1.t2[2] * sp[0] - f1.t2[0] * sp[2],
+                        f1.t2[0] * sp[1] - f1.t2[1] * sp[0]};
+  const double w2[3] = {sp[1] * f1.t1[2] - sp[2] * f1.t1[1], sp[2] * f1.t1[0] - sp[0] * f1.t1[2],
+                        sp[0] * f1.t1[1] - sp[1] * f1.t1[0]};
+  double wm[9], tq[2] = {0, 0};
+  for (int c = 0; c < 3; ++c) {
+    wm[c] = -(w1[c] + w2[c]);
+    wm[3 + c] = w1[c];
+    wm[6 + c] = w2[c];
+    for (int k = 0; k < 2; ++k) tq[k] += 0.5 * (xm0[k + 1][c] - xm0[0][c]) * f1.n[c];
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int j = 0; j < 9; ++j) b.Ptm[r][j] = b.Pm[r][j] - f.n[r] * wm[j] / d;
+    for (int k = 0; k < 2; ++k) b.Ptq[r][k] = b.Pq[r][k] - f.n[r] * tq[k] / d;
+  }
+  return true;
+}
+
 /// The blocks of P, Pt and X (struct above) of one active frictionless slave, at the state
 /// (xs0, xm0) = positions at t_n, (xs1, xm1) = the current iterate of t_{n+1}; xi = the slave's
 /// facet coordinates, which must be the CPP of x_{s,n+1/2} on the facet at n+1/2 (as left by
 /// frictionless_project: the exact terms are the derivative of update steps 1-3 at such a
-/// state); gs = the slave's contactless residual g_s. Returns false (blocks zeroed) for a
-/// degenerate facet at n+1/2.
+/// state); gs = the slave's contactless residual g_s; close: the gap is closed at t_{n+1}
+/// (docs/THEORY.md §7, step 3 of frictionless_project with close = true). Returns false
+/// (blocks zeroed) for a degenerate facet at n+1/2 (or, closing, at n+1).
 KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const double xs1[3],
                                                 const double xm0[3][3], const double xm1[3][3],
                                                 const double xi[2], const double gs[3],
-                                                FrictionlessBlocks& b) {
+                                                FrictionlessBlocks& b, bool close = false) {
   for (int r = 0; r < 3; ++r) {
     b.n[r] = 0;
     for (int j = 0; j < 9; ++j) b.Pm[r][j] = b.Ptm[r][j] = 0;
@@ -138,6 +178,7 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
     for (int j = 0; j < 9; ++j) b.Ptm[r][j] = b.Pm[r][j] - n[r] * wm[j];
     for (int k = 0; k < 2; ++k) b.Ptq[r][k] = b.Pq[r][k] + 0.5 * n[r] * rk[k];
   }
+  if (close && !frictionless_closed_right_factor(xs1, xm0, xm1, N, f, b)) return false;
 
   // X: the variation of P^T at fixed g (§5).
   // Slave row k: d(tau_k . g_s) = dtau_k . g_s: +g_s/2 on m_{k+2}, -g_s/2 on m1 (eq. 57-58).
@@ -177,10 +218,12 @@ KOKKOS_INLINE_FUNCTION void frictionless_residual(const FrictionlessBlocks& b, c
 /// Step 3 moves x_{s,n+1/2} along n, which keeps its CPP on the flat facet (§2), so xi stays the
 /// CPP (condition (b)). Returns how far xi is outside the facet (-min N, <= 0 inside); facet
 /// switching and hysteresis are the caller's. A degenerate facet leaves xi and xs1 unchanged
-/// and returns +infinity.
+/// and returns +infinity. close (docs/THEORY.md §7.3): step 3 instead moves x_{s,n+1} along
+/// n_{n+1/2} onto the facet's plane at n+1 (g_N = 0 at t_{n+1}); moving along n_{n+1/2} keeps
+/// condition (b), and (a) is then replaced by the closure.
 KOKKOS_INLINE_FUNCTION double frictionless_project(const double xs0[3], double xs1[3],
                                                    const double xm0[3][3], const double xm1[3][3],
-                                                   double xi[2]) {
+                                                   double xi[2], bool close = false) {
   double xmh[3][3], xsh[3];
   for (int r = 0; r < 3; ++r) {
     xsh[r] = 0.5 * (xs0[r] + xs1[r]);
@@ -189,16 +232,27 @@ KOKKOS_INLINE_FUNCTION double frictionless_project(const double xs0[3], double x
   double xi_new[2], gap;
   if (!facet_cpp(xsh, xmh, xi_new, gap)) return Kokkos::Experimental::infinity<double>::value;
   const Facet f = facet(xmh);
+  double dgN = 0;
+  if (close) {  // phi / (n_{n+1/2} . n_{n+1}), phi = g_N at n+1 (independent of xi)
+    const Facet f1 = facet(xm1);
+    double phi = 0, d = 0;
+    for (int c = 0; c < 3; ++c) {
+      phi += (xs1[c] - xm1[0][c]) * f1.n[c];
+      d += f.n[c] * f1.n[c];
+    }
+    if (!(f1.area2 > 0) || !(d > 0)) return Kokkos::Experimental::infinity<double>::value;
+    dgN = phi / d;
+  }
   xi[0] = xi_new[0];
   xi[1] = xi_new[1];
   double N[3];
   facet_shape(xi, N);
-  double dgN = 0;
-  for (int c = 0; c < 3; ++c) {
-    double dmN = 0;
-    for (int i = 0; i < 3; ++i) dmN += N[i] * (xm1[i][c] - xm0[i][c]);
-    dgN += (xs1[c] - xs0[c] - dmN) * f.n[c];
-  }
+  if (!close)
+    for (int c = 0; c < 3; ++c) {
+      double dmN = 0;
+      for (int i = 0; i < 3; ++i) dmN += N[i] * (xm1[i][c] - xm0[i][c]);
+      dgN += (xs1[c] - xs0[c] - dmN) * f.n[c];
+    }
   for (int c = 0; c < 3; ++c) xs1[c] -= dgN * f.n[c];
   return facet_outside(xi);
 }

@@ -127,6 +127,11 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
     s.active.push_back(a);
     s.normal_force.push_back(c.normal_force.at(k / 5));
   }
+  // docs/THEORY.md §7.2: which nodes keep their gap follows from u_n and the active set, as at
+  // the end of the step that wrote the checkpoint
+  if (sim.contact && sim.contact->closes_gaps())
+    sim.contact->mark_kept_gaps(s.active,
+                                contact::positions(sim.model, sim.contact->replicate(*s.u)));
 }
 
 std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path,

@@ -12,12 +12,15 @@ ActiveConstraints::ActiveConstraints(const Contact& contact, linalg::Elimination
 bool ActiveConstraints::use(std::vector<Active>* trial) {
   trial_ = trial;
   std::vector<std::array<double, 4>> key;
-  int fless = 0;
+  int fless = 0, closing = 0;
   for (const auto& a : *trial) {
     key.push_back({double(a.slave), double(a.facet), a.xi[0], a.xi[1]});
-    fless += contact_.pairs()[a.pair].kind == Kind::frictionless;
+    const Pair& p = contact_.pairs()[a.pair];
+    fless += p.kind == Kind::frictionless;
+    closing += p.kind == Kind::full_stick && contact_.closes(a);
   }
   frictionless_ = contact_.global_count(fless) > 0;
+  closing_stick_ = contact_.global_count(closing) > 0;
   if (frictionless_) {  // P is rebuilt at every iterate anyway (xi changes inside Newton)
     applied_.clear();
     index_ = contact_.gather(*trial);
@@ -32,8 +35,10 @@ bool ActiveConstraints::use(std::vector<Active>* trial) {
   return true;
 }
 
-// §5: the start iterate is projected (update steps 2-3), so that it satisfies (a) and (b).
+// §5: the start iterate is projected (update steps 2-3), so that it satisfies (a) and (b);
+// docs/THEORY.md §7.2: closing full-stick slaves start on their master point.
 void ActiveConstraints::start(const Vector& u0, Vector& u1) {
+  if (closing_stick_) contact_.close_stick(*trial_, u1);
   if (!frictionless_) return;
   x0_ = positions(contact_.disc_model(), contact_.replicate(u0));
   after_update(u0, u1);

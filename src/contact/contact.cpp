@@ -44,6 +44,14 @@ int Contact::global_count(int local) const {
   return g;
 }
 
+/// g_N of node s on the plane of facet f in configuration x (+infinity if degenerate).
+static double gap_at(const std::vector<double>& x, int s, const std::array<int, 3>& f) {
+  double xm[3][3], xi[2], gap;
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) xm[k][i] = x[3 * f[k] + i];
+  return kernels::facet_cpp(&x[3 * s], xm, xi, gap) ? gap : 1e300;
+}
+
 void Contact::facet_coords(const Active& a, const std::vector<double>& x, double xm[3][3]) const {
   const auto& f = pairs_[a.pair].facets[a.facet];
   for (int k = 0; k < 3; ++k)
@@ -89,8 +97,14 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
                            const kernels::FacetMetric m = kernels::facet_metric(xf);
                            double xi[2], gap;
                            if (!kernels::facet_cpp(y, xf, m, xi, gap)) return;
-                           kernels::facet_clamp(m, xi);
+                           // docs/THEORY.md §7.2: a closing stick node keeps its CPP in the
+                           // edge extension (closing to a clamped xi drags it along the facet)
+                           if (!(pr.close_gap && pr.kind == Kind::full_stick))
+                             kernels::facet_clamp(m, xi);
                            hit[k] = Active{s, static_cast<int>(p), h1.facet, {xi[0], xi[1]}, false};
+                           // docs/THEORY.md §7.2: a node already behind the facet at t_n keeps
+                           // its gap (closing it would push it out: energy from nowhere)
+                           hit[k].keep_gap = gap_at(x0, s, pr.facets[h1.facet]) < -rule.round;
                          });
     for (const auto& a : hit)
       if (a.slave >= 0) {
@@ -242,7 +256,8 @@ void Contact::frictionless_rows(const std::vector<Active>& active, const ActiveI
       beta += dv(l, 0) / 3;
     }
     kernels::FrictionlessBlocks b;
-    kernels::frictionless_blocks(&x0[3 * a.slave], &x1[3 * a.slave], xm0, xm1, a.xi, gs, b);
+    kernels::frictionless_blocks(&x0[3 * a.slave], &x1[3 * a.slave], xm0, xm1, a.xi, gs, b,
+                                 closes(a));
     // master dof j = 3 i + c is a column (and a row of X) unless rigid or fixed; a master node
     // that is an active slave itself contributes its own row of P (chain, §3), and then its
     // X terms are left out (the linearisation is not exact in such steps)
@@ -299,7 +314,8 @@ void Contact::frictionless_project(std::vector<Active>& active, const std::vecto
     for (int i = 0; i < 3; ++i) xs1[i] = x1[3 * a.slave + i];
     facet_coords(a, x0, xm0);
     facet_coords(a, x1, xm1);
-    double out = kernels::frictionless_project(&x0[3 * a.slave], xs1, xm0, xm1, xi);
+    const bool close = closes(a);
+    double out = kernels::frictionless_project(&x0[3 * a.slave], xs1, xm0, xm1, xi, close);
     if (out > tol_f) {  // step 2: beyond the hysteresis, move to a neighbour with a valid CPP
       if (xh.empty()) {
         xh.resize(x0.size());
@@ -319,7 +335,7 @@ void Contact::frictionless_project(std::vector<Active>& active, const std::vecto
         xi[1] = h.xi[1];
         facet_coords(a, x0, xm0);
         facet_coords(a, x1, xm1);
-        out = kernels::frictionless_project(&x0[3 * a.slave], xs1, xm0, xm1, xi);
+        out = kernels::frictionless_project(&x0[3 * a.slave], xs1, xm0, xm1, xi, close);
       }
     }
     // kept with the extrapolated xi, up to the edge extension of activation (§6.3) so that a
@@ -346,6 +362,15 @@ std::vector<std::pair<GO, double>> Contact::dummy_values(const Matrix& A,
     for (int c = 0; c < 3; ++c) out.emplace_back(dummies[k + c], tr / 3);
   }
   return out;
+}
+
+// docs/THEORY.md §7.2: an active node behind its facet keeps its gap (closing it would push it
+// out: energy from nowhere); every other node of a closing pair is closed in the next step.
+void Contact::mark_kept_gaps(std::vector<Active>& active, const std::vector<double>& x1) const {
+  for (auto& a : active) {
+    const Pair& pr = pairs_[a.pair];
+    if (pr.close_gap) a.keep_gap = gap_at(x1, a.slave, pr.facets[a.facet]) < -entry_rule(pr).round;
+  }
 }
 
 void Contact::gap_range(const std::vector<double>& x1, const std::vector<Active>& active,

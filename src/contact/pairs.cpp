@@ -120,6 +120,7 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     Pair p;
     p.name = name;
     p.kind = c.get<std::string>("type") == "frictionless" ? Kind::frictionless : Kind::full_stick;
+    p.close_gap = c.get<bool>("close gap");
     const SurfaceRef s = parse_ref(model, c.get<std::string>("slave"), where + "/slave");
     const SurfaceRef m = parse_ref(model, c.get<std::string>("master"), where + "/master");
     const fem::Body& sb = model.bodies[s.body];

@@ -32,6 +32,13 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
           "deeper than this, e.g. behind a thin master, is not activated); 0: automatic, half "
           "the mean edge length of the master's facets.",
           double_at_least(0.0));
+  pl->set("close gap", false,
+          "true: every active slave node ends each step on its master facet (g_N = 0 at the "
+          "end of the step; docs/THEORY.md §7): the gap an activated node had at the start of "
+          "the step (up to |V| dt above the master) is closed, and the kinetic energy the "
+          "closure takes (or gives) is restored by a velocity update along the contact "
+          "normals that keeps L and J, so energy stays conserved. false: an activated node "
+          "keeps its gap at activation (§6.5).");
   return pl;
 }
 

@@ -27,6 +27,10 @@ Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Eli
   if (contact_) {
     constraints_ = std::make_unique<contact::ActiveConstraints>(*contact_, elim_, fixed_);
     newton_.set_hooks(constraints_.get());
+    if (contact_->closes_gaps()) {
+      restoration_ = std::make_unique<EnergyRestoration>(newton_.disc(), fixed_);
+      closure_p_ = Teuchos::rcp(new Vector(newton_.disc().owned_map()));
+    }
   } else {
     elim_.set_constraints(fixed_, {}, {});
   }
@@ -117,6 +121,11 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
     }
   }
   const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
+  if (restoration_) {  // docs/THEORY.md §7.4: the work the closure made the contact forces do
+    const auto x0 = contact::positions(contact_->disc_model(), contact_->replicate(u0));
+    closure_work_ = contact_->closure_work(newton_.last_residual(), x0, x1, trial, *closure_p_);
+  }
+  if (restoration_) contact_->mark_kept_gaps(keep, x1);
   rep.contact.active = contact_->global_count(static_cast<int>(trial.size()));
   rep.contact.reactivated = contact_->global_count(rep.contact.reactivated);
   contact_->gap_range(x1, trial, rep.contact.gap_min, rep.contact.gap_max);
@@ -125,6 +134,24 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   Teuchos::reduceAll(*contact_->disc_comm(), Teuchos::REDUCE_MIN, 1, &fmin, &gmin);
   rep.contact.normal_force_min = gmin;
   s_.active = std::move(keep);
+  return true;
+}
+
+// docs/THEORY.md §7.4: V_{n+1} += gamma M^-1 p gives back the energy -W_c the closure took
+// (or takes the energy it gave); false when no impulse along p can (the step is cut).
+bool Stepper::restore_energy(Vector& V1, StepReport& rep) {
+  Teuchos::TimeMonitor tm(contact_timer());
+  const Restoration r = restoration_->restore(*closure_p_, -closure_work_, V1);
+  if (!r.ok) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "the gap closure gave %.3e of energy that no compressive velocity update "
+                  "along the contact normals can take back",
+                  closure_work_);
+    rep.last_failure = buf;
+    return false;
+  }
+  rep.closure_energy += -closure_work_;
   return true;
 }
 
@@ -152,9 +179,16 @@ StepReport Stepper::advance() {
     const double rest = end_ - s_.t;
     const double h = rest < s_.dt * (1 - 1e-9) ? rest : s_.dt;
     check_step_size(h);
-    if (solve_step(h, u1, rep)) {
+    Vector V1(*s_.V, Teuchos::Copy);
+    bool restored = true;
+    const bool solved = solve_step(h, u1, rep);
+    if (solved) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n
-      s_.V->update(2.0 / h, u1, -2.0 / h, u0, -1.0);
+      V1.update(2.0 / h, u1, -2.0 / h, u0, -1.0);
+      if (restoration_) restored = restore_energy(V1, rep);
+    }
+    if (solved && restored) {
+      s_.V->assign(V1);
       if (!s_.last_increment) s_.last_increment = Teuchos::rcp(new Vector(u0.getMap()));
       s_.last_increment->update(1.0, u1, -1.0, u0, 0.0);
       s_.last_h = h;

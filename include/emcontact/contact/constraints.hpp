@@ -19,8 +19,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   bool use(std::vector<Active>* trial);
 
   void start(const Vector& u0, Vector& u1) override;
-  void before_reduce(const Vector& u0, const Vector& u1, const Vector& g,
-                     const Matrix& A) override;
+  void before_reduce(const Vector& u0, const Vector& u1, const Vector& g, const Matrix& A) override;
   void after_update(const Vector& u0, Vector& u1) override;
 
  private:
@@ -30,9 +29,10 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<Active>* trial_ = nullptr;
   std::vector<std::array<double, 4>> applied_;  ///< (slave, facet, xi) P was built for
   std::vector<GO> dummies_;
-  bool frictionless_ = false;  ///< any active frictionless slave on any rank
-  std::vector<double> x0_;     ///< positions at t_n (frictionless)
-  ActiveIndex index_;          ///< every rank's active entries (chains)
+  bool frictionless_ = false;   ///< any active frictionless slave on any rank
+  bool closing_stick_ = false;  ///< any active full-stick slave of a `close gap` pair
+  std::vector<double> x0_;      ///< positions at t_n (frictionless)
+  ActiveIndex index_;           ///< every rank's active entries (chains)
 };
 
 }  // namespace emc::contact

@@ -18,6 +18,7 @@ struct Active {
   int facet = -1;
   double xi[2] = {0, 0};
   bool off = false;  ///< frictionless: outside every facet by more than tol_f (released at the end)
+  bool keep_gap = false;  ///< not closed although its pair closes gaps (re-activated, §7.2)
   bool operator<(const Active& o) const { return slave < o.slave; }
 };
 
@@ -94,6 +95,22 @@ class Contact {
   /// beta = tr(A_ss)/3 for each dummy's slave (eq. 44), from A's diagonal.
   std::vector<std::pair<GO, double>> dummy_values(const Matrix& A,
                                                   const std::vector<GO>& dummies) const;
+
+  /// docs/THEORY.md §7.2: moves the slave dofs of u1 of my active full-stick entries of
+  /// closing pairs onto their master point, x_{s,n+1} = N x_{m,n+1} (collective).
+  void close_stick(const std::vector<Active>& active, Vector& u1) const;
+  /// docs/THEORY.md §7.4: the work W_c the contact forces of the closing pairs' active
+  /// entries did over the step (global; g = the contactless residual at the solution) and
+  /// the impulse direction p (owned dofs) that gives energy back along the contact normals
+  /// (collective).
+  double closure_work(const Vector& g, const std::vector<double>& x0, const std::vector<double>& x1,
+                      const std::vector<Active>& active, Vector& p) const;
+  /// docs/THEORY.md §7.2: at the end of a step, entries of closing pairs behind their facet at
+  /// x1 keep their gap in the next step, the others are closed.
+  void mark_kept_gaps(std::vector<Active>& active, const std::vector<double>& x1) const;
+  /// Whether any pair has `close gap`; whether entry a is closed (docs/THEORY.md §7.2).
+  bool closes_gaps() const;
+  bool closes(const Active& a) const { return pairs_[a.pair].close_gap && !a.keep_gap; }
 
   /// g_N at n+1 of the active entries on their facet's plane: global min and max.
   void gap_range(const std::vector<double>& x1, const std::vector<Active>& active, double& lo,

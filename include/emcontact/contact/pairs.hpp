@@ -17,8 +17,9 @@ enum class Kind { full_stick, frictionless };
 struct Pair {
   std::string name;
   Kind kind = Kind::full_stick;
-  double dmax = 0;                         ///< activation only for -dmax < g_N < 0 (§6.3)
-  std::vector<int> slaves;                 ///< global node ids, sorted
+  double dmax = 0;          ///< activation only for -dmax < g_N < 0 (§6.3)
+  bool close_gap = false;   ///< active nodes end every step on the master (docs/THEORY.md §7)
+  std::vector<int> slaves;  ///< global node ids, sorted
   std::vector<std::array<int, 3>> facets;  ///< geometry node ids, outward from the master
   int master_body = -1;
   bool rigid_master = false;

@@ -12,11 +12,13 @@
 namespace emc::fem {
 
 /// Dof numbering: global dof 3 n + c of node n, component c.
-inline GO dof_gid(long long node, int c) { return 3 * node + c; }
+inline GO dof_gid(long long node, int c) {
+  return 3 * node + c;
+}
 
 /// Per local element data in Kokkos views, copied by value into kernels (never `this`).
 struct ElementViews {
-  Kokkos::View<double* [4][3], ExecSpace> X, G;  ///< reference coordinates, shape gradients
+  Kokkos::View<double*[4][3], ExecSpace> X, G;  ///< reference coordinates, shape gradients
   Kokkos::View<double*, ExecSpace> Ve, lambda, mu, rho;
   Kokkos::View<int* [4], ExecSpace> node_lid;  ///< node index in the overlap map (dof 3k+c)
   Kokkos::View<int* [12], ExecSpace> col_lid;  ///< dof columns in the graph's column map
@@ -36,8 +38,8 @@ struct ElementViews {
 };
 
 struct AssemblyInfo {
-  double min_detF = 1;      ///< smallest det F_{n+1} over all elements (global)
-  long long worst_tet = -1; ///< global id (0-based) of the element with that det F
+  double min_detF = 1;       ///< smallest det F_{n+1} over all elements (global)
+  long long worst_tet = -1;  ///< global id (0-based) of the element with that det F
 };
 
 class Discretization {
@@ -47,9 +49,9 @@ class Discretization {
   const Model& model() const { return model_; }
   const Partition& part() const { return part_; }
   Teuchos::RCP<const Comm> comm() const { return comm_; }
-  Teuchos::RCP<const Map> owned_map() const { return owned_; }      ///< owned dofs
-  Teuchos::RCP<const Map> overlap_map() const { return overlap_; }  ///< owned + shared dofs
-  Teuchos::RCP<const Map> element_map() const { return elements_; } ///< my tets
+  Teuchos::RCP<const Map> owned_map() const { return owned_; }       ///< owned dofs
+  Teuchos::RCP<const Map> overlap_map() const { return overlap_; }   ///< owned + shared dofs
+  Teuchos::RCP<const Map> element_map() const { return elements_; }  ///< my tets
   Teuchos::RCP<FEGraph> graph() const { return graph_; }
 
   /// Copies owned values to an owned+shared vector.
@@ -61,6 +63,9 @@ class Discretization {
   /// u0, V0 = state at t_n, u1 = current iterate; all owned vectors.
   AssemblyInfo assemble(const Vector& u0, const Vector& V0, const Vector& u1, double dt,
                         FEMatrix* A, Vector& r, Vector* scale) const;
+
+  /// Mv = M v with the consistent mass matrix (ALGORITHM.md §1); owned vectors.
+  void apply_mass(const Vector& v, Vector& Mv) const;
 
   /// Monitored quantities of (u, V) summed over all ranks (ALGORITHM.md §1 eq. 23-24).
   kernels::Monitors monitors(const Vector& u, const Vector& V) const;

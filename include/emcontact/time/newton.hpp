@@ -53,6 +53,7 @@ class Newton {
   const NewtonResult& last() const { return last_; }
   /// The contactless residual g of eq. 20 at the last iterate (contact forces, §4).
   const Vector& last_residual() const { return *g_; }
+  const fem::Discretization& disc() const { return disc_; }
 
  private:
   NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1);

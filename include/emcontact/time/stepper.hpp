@@ -12,6 +12,7 @@
 #include "emcontact/contact/constraints.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/time/newton.hpp"
+#include "emcontact/time/restoration.hpp"
 
 namespace emc::time {
 
@@ -40,6 +41,7 @@ struct StepReport {
   int newton_iterations = 0;
   int linear_iterations = 0;
   int cuts = 0;
+  double closure_energy = 0;  ///< energy given back by the velocity update (docs/THEORY.md §7.4)
   std::string last_failure;
   contact::StepContactStats contact;
 };
@@ -66,10 +68,14 @@ class Stepper {
   double dt_, end_;
   int max_cuts_, grow_after_;
   std::unique_ptr<contact::ActiveConstraints> constraints_;
+  std::unique_ptr<EnergyRestoration> restoration_;  ///< with `close gap` pairs only
+  Teuchos::RCP<Vector> closure_p_;                  ///< the step's impulse direction (§7.4)
+  double closure_work_ = 0;                         ///< the step's contact work W_c (§7.4)
 
   void apply(std::vector<contact::Active>& active);
   void check_step_size(double h) const;
   bool solve_step(double h, Vector& u1, StepReport& rep);
+  bool restore_energy(Vector& V1, StepReport& rep);
 };
 
 }  // namespace emc::time

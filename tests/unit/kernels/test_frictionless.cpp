@@ -118,6 +118,7 @@ struct System {
   Mat A0;
   Vec b;
   double cubic = 0;
+  bool close = false;  ///< step 3 closes the gap at t_{n+1} (docs/THEORY.md §7.3)
 
   Vec g(const Vec& u) const {
     Vec du{};
@@ -151,7 +152,7 @@ double project(const System& sys, State& st) {
   double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
   sys.positions(sys.u0, xs0, xm0);
   sys.positions(st.u, xs1, xm1);
-  const double out = k::frictionless_project(xs0, xs1, xm0, xm1, st.xi);
+  const double out = k::frictionless_project(xs0, xs1, xm0, xm1, st.xi, sys.close);
   for (int c = 0; c < 3; ++c) st.u[c] = xs1[c] - sys.X[0][c];
   return out;
 }
@@ -162,7 +163,7 @@ k::FrictionlessBlocks blocks(const System& sys, const State& st) {
   sys.positions(st.u, xs1, xm1);
   const Vec g = sys.g(st.u);
   k::FrictionlessBlocks b;
-  EXPECT_TRUE(k::frictionless_blocks(xs0, xs1, xm0, xm1, st.xi, g.data(), b));
+  EXPECT_TRUE(k::frictionless_blocks(xs0, xs1, xm0, xm1, st.xi, g.data(), b, sys.close));
   return b;
 }
 
@@ -255,7 +256,8 @@ void fd_jacobians(const System& sys, const State& st, const std::vector<int>& co
 /// (non-symmetric, well conditioned), b = U(-0.5, 0.5). The current iterate: the masters rotate
 /// by 0.3 rad about their centroid, translate and deform (0.05) between t_n and t_{n+1}; the
 /// slave slides by about 0.15 and is projected (steps 2-3). deforming = false: xm1 == xm0.
-void make(unsigned seed, bool deforming, System& sys, State& st) {
+void make(unsigned seed, bool deforming, System& sys, State& st, bool close = false) {
+  sys.close = close;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   const double X[4][3] = {
@@ -302,38 +304,42 @@ void make(unsigned seed, bool deforming, System& sys, State& st) {
 // and a round-off error ~eps |R| / h ~ 1e-9 relative (|R| ~ |K| ~ 1-10 here), so 1e-6 leaves
 // three orders of margin while the paper's terms miss by > 1e-3 (next test).
 TEST(Frictionless, ExactMatrixIsTheJacobianOfTheReducedResidual) {
-  for (unsigned seed : {1u, 2u, 3u}) {
-    System sys;
-    State st;
-    make(seed, true, sys, st);
-    Mat JR, Ju;
-    fd_jacobians(sys, st, kRed, 1e-7, JR, Ju);
-    const double e_exact = rel_diff(reduced_matrix(sys, st, Terms::exact), JR, kRed, kRed);
-    const double e_half = rel_diff(reduced_matrix(sys, st, Terms::half), JR, kRed, kRed);
-    const double e_paper = rel_diff(reduced_matrix(sys, st, Terms::paper), JR, kRed, kRed);
-    std::printf("seed %u  |K - J_fd|/|J_fd|: exact %.2e  half %.2e  paper %.2e\n", seed, e_exact,
-                e_half, e_paper);
-    EXPECT_LT(e_exact, 1e-6);
-    // the extra terms matter for a master that moves and rotates over the step
-    EXPECT_GT(e_half, 1e-3);
-    EXPECT_GT(e_paper, 1e-3);
-  }
+  for (bool close : {false, true})
+    for (unsigned seed : {1u, 2u, 3u}) {
+      System sys;
+      State st;
+      make(seed, true, sys, st, close);
+      Mat JR, Ju;
+      fd_jacobians(sys, st, kRed, 1e-7, JR, Ju);
+      const double e_exact = rel_diff(reduced_matrix(sys, st, Terms::exact), JR, kRed, kRed);
+      const double e_half = rel_diff(reduced_matrix(sys, st, Terms::half), JR, kRed, kRed);
+      const double e_paper = rel_diff(reduced_matrix(sys, st, Terms::paper), JR, kRed, kRed);
+      std::printf("%s seed %u  |K - J_fd|/|J_fd|: exact %.2e  half %.2e  paper %.2e\n",
+                  close ? "closing" : "keeping", seed, e_exact, e_half, e_paper);
+      EXPECT_LT(e_exact, 1e-6);
+      // the extra terms matter for a master that moves and rotates over the step
+      EXPECT_GT(e_half, 1e-3);
+      EXPECT_GT(e_paper, 1e-3);
+    }
 }
 
 // §5: Pt's slave rows are the first-order update map du_s(dq) of steps 1-3 (the master rows
 // are the identity: u_m += du_m), independent of g.
 TEST(Frictionless, RightFactorIsTheLinearisedUpdateMap) {
-  System sys;
-  State st;
-  make(4, true, sys, st);
-  Mat JR, Ju;
-  fd_jacobians(sys, st, kRed, 1e-7, JR, Ju);
-  const Dense d = dense(blocks(sys, st));
-  const std::vector<int> slave = {0, 1, 2}, all = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
-  const double e_t = rel_diff(d.Pt, Ju, all, kRed), e_p = rel_diff(d.P, Ju, slave, kRed);
-  std::printf("|Pt - du/dq_fd|/|.| %.2e, slave rows of P instead: %.2e\n", e_t, e_p);
-  EXPECT_LT(e_t, 1e-7);
-  EXPECT_GT(e_p, 1e-3);
+  for (bool close : {false, true}) {
+    System sys;
+    State st;
+    make(4, true, sys, st, close);
+    Mat JR, Ju;
+    fd_jacobians(sys, st, kRed, 1e-7, JR, Ju);
+    const Dense d = dense(blocks(sys, st));
+    const std::vector<int> slave = {0, 1, 2}, all = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+    const double e_t = rel_diff(d.Pt, Ju, all, kRed), e_p = rel_diff(d.P, Ju, slave, kRed);
+    std::printf("%s: |Pt - du/dq_fd|/|.| %.2e, slave rows of P instead: %.2e\n",
+                close ? "closing" : "keeping", e_t, e_p);
+    EXPECT_LT(e_t, 1e-7);
+    EXPECT_GT(e_p, 1e-3);
+  }
 }
 
 // §5 last paragraph: a fixed master (xm1 == xm0; its dofs get no columns) has dxi = dq/2
@@ -468,38 +474,89 @@ TEST(Frictionless, ReducedResidualShapes) {
 // Newton on the tiny nonlinear system (cubic term in g): (K + D) dq = -R, D = beta on the
 // dummy, update steps 1-3. Exact terms: quadratic; the 'half' terms: linear.
 TEST(Frictionless, NewtonConvergesQuadratically) {
-  System sys;
-  State st0;
-  make(9, true, sys, st0);
-  sys.cubic = 2.0;
-  std::vector<double> hist[2];
-  for (int t = 0; t < 2; ++t) {
-    State st = st0;
-    for (int it = 0; it < 10; ++it) {
-      const Vec R = reduced_residual(sys, st);
-      hist[t].push_back(norm(R));
-      if (hist[t].back() < 1e-13) break;
-      Mat K = reduced_matrix(sys, st, t == 0 ? Terms::exact : Terms::half);
-      const Mat A = sys.A(st.u);
-      K[2][2] += (A[0][0] + A[1][1] + A[2][2]) / 3;  // D: beta on the dummy (§3)
-      Vec mR{};
-      for (int i = 0; i < kN; ++i) mR[i] = -R[i];
-      st = update(sys, st, solve(K, mR));
-      EXPECT_LT(std::fabs(k::facet_outside(st.xi)), 1.0);
+  for (bool close : {false, true}) {
+    System sys;
+    State st0;
+    make(9, true, sys, st0, close);
+    sys.cubic = 2.0;
+    std::vector<double> hist[2];
+    for (int t = 0; t < 2; ++t) {
+      State st = st0;
+      for (int it = 0; it < 10; ++it) {
+        const Vec R = reduced_residual(sys, st);
+        hist[t].push_back(norm(R));
+        if (hist[t].back() < 1e-13) break;
+        Mat K = reduced_matrix(sys, st, t == 0 ? Terms::exact : Terms::half);
+        const Mat A = sys.A(st.u);
+        K[2][2] += (A[0][0] + A[1][1] + A[2][2]) / 3;  // D: beta on the dummy (§3)
+        Vec mR{};
+        for (int i = 0; i < kN; ++i) mR[i] = -R[i];
+        st = update(sys, st, solve(K, mR));
+        EXPECT_LT(std::fabs(k::facet_outside(st.xi)), 1.0);
+      }
+      std::printf("%s |P^T g|:", t == 0 ? "exact" : "half ");
+      for (double r : hist[t]) std::printf(" %.1e", r);
+      std::printf("\n");
     }
-    std::printf("%s |P^T g|:", t == 0 ? "exact" : "half ");
-    for (double r : hist[t]) std::printf(" %.1e", r);
-    std::printf("\n");
+    const auto& h = hist[0];
+    ASSERT_GE(h.size(), 4u);
+    EXPECT_LT(h.back(), 1e-12 * h[0]);
+    EXPECT_LE(h.size(), 7u);
+    // quadratic: r_{k+1} <= C r_k^2 while above round-off
+    for (size_t i = 1; i + 1 < h.size(); ++i)
+      if (h[i + 1] > 1e-12) EXPECT_LT(h[i + 1], 10.0 * h[i] * h[i]) << "iteration " << i;
+    // the simplified terms converge linearly (ratio ~1e-2, set by their 2e-2 relative error in
+    // the matrix): far behind by the fifth residual
+    ASSERT_GE(hist[1].size(), 5u);
+    EXPECT_GT(hist[1][4], 1e3 * h[4]);
   }
-  const auto& h = hist[0];
-  ASSERT_GE(h.size(), 4u);
-  EXPECT_LT(h.back(), 1e-12 * h[0]);
-  EXPECT_LE(h.size(), 7u);
-  // quadratic: r_{k+1} <= C r_k^2 while above round-off
-  for (size_t i = 1; i + 1 < h.size(); ++i)
-    if (h[i + 1] > 1e-12) EXPECT_LT(h[i + 1], 10.0 * h[i] * h[i]) << "iteration " << i;
-  // the simplified terms converge linearly (ratio ~1e-2, set by their 2e-2 relative error in
-  // the matrix): far behind by the fifth residual
-  ASSERT_GE(hist[1].size(), 5u);
-  EXPECT_GT(hist[1][4], 1e3 * h[4]);
+}
+
+// docs/THEORY.md §7.3: closing, step 3 puts x_{s,n+1} on the facet's plane at t_{n+1} (g_N = 0
+// there, checked by an independent CPP at n+1) while xi stays the CPP of x_{s,n+1/2} at n+1/2
+// (condition (b)) and x_{s,n+1} moves along n_{n+1/2} only. Coordinates are O(1) and the
+// slave starts 0.06 off the facet: a few eps of round-off.
+TEST(Frictionless, ClosingProjectionLandsOnTheFacetAtTheEndOfTheStep) {
+  for (unsigned seed : {6u, 7u, 10u}) {
+    System sys;
+    State st;
+    make(seed, true, sys, st, true);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> U(-0.02, 0.02);
+    for (double& v : st.u) v += U(rng);
+    double xs_before[3], dummy[3][3];
+    sys.positions(st.u, xs_before, dummy);
+    project(sys, st);
+    double xs0[3], xm0[3][3], xs1[3], xm1[3][3], xsh[3], xmh[3][3];
+    sys.positions(sys.u0, xs0, xm0);
+    sys.positions(st.u, xs1, xm1);
+    // g_N at n+1 on the facet at n+1 (independent of the kernels' facet_cpp)
+    double t1[3], t2[3], n1[3], d1[3];
+    for (int c = 0; c < 3; ++c) {
+      t1[c] = xm1[1][c] - xm1[0][c];
+      t2[c] = xm1[2][c] - xm1[0][c];
+      d1[c] = xs1[c] - xm1[0][c];
+    }
+    cross(t1, t2, n1);
+    const double nn1 = std::sqrt(dot(n1, n1));
+    EXPECT_NEAR(dot(d1, n1) / nn1, 0.0, 4e-15);
+    // (b) at n+1/2, and the move along n_{n+1/2}
+    for (int c = 0; c < 3; ++c) {
+      xsh[c] = 0.5 * (xs0[c] + xs1[c]);
+      for (int i = 0; i < 3; ++i) xmh[i][c] = 0.5 * (xm0[i][c] + xm1[i][c]);
+      t1[c] = xmh[1][c] - xmh[0][c];
+      t2[c] = xmh[2][c] - xmh[0][c];
+    }
+    const double N[3] = {1 - st.xi[0] - st.xi[1], st.xi[0], st.xi[1]};
+    double d[3], moved[3];
+    for (int c = 0; c < 3; ++c) {
+      d[c] = xsh[c] - N[0] * xmh[0][c] - N[1] * xmh[1][c] - N[2] * xmh[2][c];
+      moved[c] = xs1[c] - xs_before[c];
+    }
+    EXPECT_NEAR(dot(d, t1), 0.0, 4e-15);
+    EXPECT_NEAR(dot(d, t2), 0.0, 4e-15);
+    EXPECT_NEAR(dot(moved, t1), 0.0, 4e-15);
+    EXPECT_NEAR(dot(moved, t2), 0.0, 4e-15);
+    EXPECT_GT(std::sqrt(dot(moved, moved)), 1e-3) << "the closure should have moved the slave";
+  }
 }
