@@ -42,34 +42,6 @@ void Contact::close_stick(const std::vector<Active>& active, Vector& u1) const {
   }
 }
 
-namespace {
-
-/// The force F_e an active entry transmits to its facet (§7.4): its slave's contactless
-/// residual plus what the slave's own slaves transmit to it (chains), recursively.
-struct Transmitted {
-  const std::vector<double>& g;                                // every dof's g
-  std::map<int, std::vector<std::pair<int, double>>> carried;  // node -> (slave, N_i)
-  std::map<int, std::array<double, 3>> memo;
-  std::set<int> visiting;
-
-  std::array<double, 3> operator()(int s) {
-    auto it = memo.find(s);
-    if (it != memo.end()) return it->second;
-    std::array<double, 3> F = {g[3 * s], g[3 * s + 1], g[3 * s + 2]};
-    if (!visiting.insert(s).second) return F;  // a cycle (cut in P too): stop here
-    auto c = carried.find(s);
-    if (c != carried.end())
-      for (const auto& [slave, w] : c->second) {
-        const auto f = (*this)(slave);
-        for (int i = 0; i < 3; ++i) F[i] += w * f[i];
-      }
-    visiting.erase(s);
-    return memo[s] = F;
-  }
-};
-
-}  // namespace
-
 // §7.4: W_c = sum_e F_e . ((x_{s,n+1} - x_{s,n}) - N (x_{m,n+1} - x_{m,n})) over the active
 // entries of closing pairs, and p: +w_e n_e on the slave, -w_e N'_i n_e on its free master
 // nodes, w_e = max(F_e . n_e, 0), n_e and N' the facet's normal and the slave's CPP at t_{n+1}.
@@ -77,22 +49,14 @@ double Contact::closure_work(const Vector& g, const std::vector<double>& x0,
                              const std::vector<double>& x1, const std::vector<Active>& active,
                              Vector& p) const {
   const auto& m = disc_.model();
-  const ActiveIndex index = gather(active);
-  Transmitted F{replicate(g), {}, {}, {}};
-  for (const auto& [s, a] : index.by_slave) {
-    const auto& f = pairs_[a.pair].facets[a.facet];
-    double N[3];
-    kernels::facet_shape(a.xi, N);
-    for (int i = 0; i < 3; ++i)
-      if (f[i] < m.num_nodes()) F.carried[f[i]].emplace_back(s, N[i]);
-  }
+  const auto F = transmitted_forces(g, gather(active));
   double work = 0;
   std::vector<double> send;  // (dof, value) pairs of p
   for (const auto& a : active) {
     const Pair& pr = pairs_[a.pair];
     if (!closes(a)) continue;
     const auto& f = pr.facets[a.facet];
-    const auto Fe = F(a.slave);
+    const auto& Fe = F.at(a.slave);
     double xm0[3][3], xm1[3][3], N[3];
     facet_coords(a, x0, xm0);
     facet_coords(a, x1, xm1);

@@ -258,25 +258,25 @@ void Contact::frictionless_rows(const std::vector<Active>& active, const ActiveI
     kernels::FrictionlessBlocks b;
     kernels::frictionless_blocks(&x0[3 * a.slave], &x1[3 * a.slave], xm0, xm1, a.xi, gs, b,
                                  closes(a));
-    // master dof j = 3 i + c is a column (and a row of X) unless rigid or fixed; a master node
-    // that is an active slave itself contributes its own row of P (chain, §3), and then its
-    // X terms are left out (the linearisation is not exact in such steps)
-    GO mdof[9];
-    bool live[9];
-    for (int i = 0; i < 3; ++i)
-      for (int c = 0; c < 3; ++c) {
-        live[3 * i + c] = f[i] < m.num_nodes() && !m.fixed[f[i]] && !index.by_slave.count(f[i]);
-        mdof[3 * i + c] = live[3 * i + c] ? fem::dof_gid(f[i], c) : -1;
-      }
+    // master dof j = 3 i + c: a column of P and a row and column of X in terms of q, through
+    // expand_node: the dof itself if free, nothing if rigid or fixed, and for a master node
+    // that is an active slave itself its own row of P (a chain, §3; X's rows and columns are
+    // carried through that row like P's)
+    linalg::PRow mq[9];
+    for (int j = 0; j < 9; ++j) {
+      std::vector<int> path = {a.slave};
+      expand_node(f[j / 3], j % 3, 1.0, index, x0, x1, path, mq[j]);
+    }
     const GO q[2] = {fem::dof_gid(a.slave, 0), fem::dof_gid(a.slave, 1)};
     for (int r = 0; r < 3; ++r) {
       linalg::PRow p{fem::dof_gid(a.slave, r), {}, {}}, pt = p;
-      for (int j = 0; j < 9; ++j) {
-        std::vector<int> path = {a.slave};
-        expand_node(f[j / 3], j % 3, b.Pm[r][j], index, x0, x1, path, p);
-        path = {a.slave};
-        expand_node(f[j / 3], j % 3, b.Ptm[r][j], index, x0, x1, path, pt);
-      }
+      for (int j = 0; j < 9; ++j)
+        for (std::size_t l = 0; l < mq[j].cols.size(); ++l) {
+          p.cols.push_back(mq[j].cols[l]);
+          p.weights.push_back(b.Pm[r][j] * mq[j].weights[l]);
+          pt.cols.push_back(mq[j].cols[l]);
+          pt.weights.push_back(b.Ptm[r][j] * mq[j].weights[l]);
+        }
       for (int k = 0; k < 2; ++k) {
         p.cols.push_back(q[k]);
         p.weights.push_back(b.Pq[r][k]);
@@ -286,15 +286,19 @@ void Contact::frictionless_rows(const std::vector<Active>& active, const ActiveI
       rows.push_back(std::move(p));
       pt_rows.push_back(std::move(pt));
     }
-    for (int j = 0; j < 9; ++j) {
-      if (!live[j]) continue;
-      for (int k = 0; k < 2; ++k) {
-        X.push_back({q[k], mdof[j], b.Xsq[k][j]});
-        X.push_back({mdof[j], q[k], b.Xmq[j][k]});
+    for (int j = 0; j < 9; ++j)
+      for (std::size_t l = 0; l < mq[j].cols.size(); ++l) {
+        const GO dj = mq[j].cols[l];
+        const double wj = mq[j].weights[l];
+        for (int k = 0; k < 2; ++k) {
+          X.push_back({q[k], dj, wj * b.Xsq[k][j]});
+          X.push_back({dj, q[k], wj * b.Xmq[j][k]});
+        }
+        for (int i = 0; i < 9; ++i)
+          if (b.Xmm[j][i] != 0)
+            for (std::size_t e = 0; e < mq[i].cols.size(); ++e)
+              X.push_back({dj, mq[i].cols[e], wj * mq[i].weights[e] * b.Xmm[j][i]});
       }
-      for (int i = 0; i < 9; ++i)
-        if (live[i] && b.Xmm[j][i] != 0) X.push_back({mdof[j], mdof[i], b.Xmm[j][i]});
-    }
     dummy_beta.emplace_back(fem::dof_gid(a.slave, 2), beta);  // eq. 59
   }
 }

@@ -108,6 +108,10 @@ class Contact {
   /// docs/THEORY.md §7.2: at the end of a step, entries of closing pairs behind their facet at
   /// x1 keep their gap in the next step, the others are closed.
   void mark_kept_gaps(std::vector<Active>& active, const std::vector<double>& x1) const;
+  /// The force F_s each entry of `index` transmits to its facet: g_s plus what its own slaves
+  /// transmit to it (chains, §3); g the contactless residual (collective).
+  std::map<int, std::array<double, 3>> transmitted_forces(const Vector& g,
+                                                          const ActiveIndex& index) const;
   /// Whether any pair has `close gap`; whether entry a is closed (docs/THEORY.md §7.2).
   bool closes_gaps() const;
   bool closes(const Active& a) const { return pairs_[a.pair].close_gap && !a.keep_gap; }

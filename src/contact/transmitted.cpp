@@ -1,0 +1,53 @@
+// The force an active slave transmits to its master facet along chains (ALGORITHM.md §3:
+// P = P_1 P_2 ...): its own contactless residual plus what its own slaves transmit to it.
+#include <set>
+
+#include "emcontact/contact/contact.hpp"
+#include "kernels/facet.hpp"
+
+namespace emc::contact {
+
+namespace {
+
+struct Transmitted {
+  const std::vector<double>& g;                                // every dof's g
+  std::map<int, std::vector<std::pair<int, double>>> carried;  // node -> (its slave, N_i)
+  std::map<int, std::array<double, 3>> memo;
+  std::set<int> visiting;
+
+  std::array<double, 3> operator()(int s) {
+    auto it = memo.find(s);
+    if (it != memo.end()) return it->second;
+    std::array<double, 3> F = {g[3 * s], g[3 * s + 1], g[3 * s + 2]};
+    if (!visiting.insert(s).second) return F;  // a cycle (cut in P too): stop here
+    auto c = carried.find(s);
+    if (c != carried.end())
+      for (const auto& [slave, w] : c->second) {
+        const auto f = (*this)(slave);
+        for (int i = 0; i < 3; ++i) F[i] += w * f[i];
+      }
+    visiting.erase(s);
+    return memo[s] = F;
+  }
+};
+
+}  // namespace
+
+std::map<int, std::array<double, 3>> Contact::transmitted_forces(const Vector& g,
+                                                                 const ActiveIndex& index) const {
+  const auto& m = disc_.model();
+  const auto all = replicate(g);
+  Transmitted F{all, {}, {}, {}};
+  for (const auto& [s, a] : index.by_slave) {
+    const auto& f = pairs_[a.pair].facets[a.facet];
+    double N[3];
+    kernels::facet_shape(a.xi, N);
+    for (int i = 0; i < 3; ++i)
+      if (f[i] < m.num_nodes()) F.carried[f[i]].emplace_back(s, N[i]);
+  }
+  std::map<int, std::array<double, 3>> out;
+  for (const auto& [s, a] : index.by_slave) out[s] = F(s);
+  return out;
+}
+
+}  // namespace emc::contact
