@@ -104,7 +104,7 @@ SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Ve
     klu2_.solve(A, b, x);
     message = "Amesos2 KLU2 direct solve";
   } else if (type_ == "mumps") {
-    mumps_solve(A, b, x, tol, st, message);
+    mumps_solve(A, b, x, st, message);  // to tol_: exact like a direct solve
   } else {
     if (prec_.is_null() || !reuse_) {
       build_preconditioner(A);

@@ -54,9 +54,10 @@ void set_linear(Teuchos::ParameterList& pl) {
          "Reuse the preconditioner setup across solves where possible.");
   pl.set("factorisation reuse rate", 0.1,
          "mumps: the factors of an earlier matrix stay GMRES's preconditioner while GMRES "
-         "reduces the residual by at least this factor per iteration (it gets the iterations "
-         "this rate needs for the solve's tolerance; if it has not converged then, the matrix "
-         "is factored anew). Reuse preconditioner = false: a factorisation at every solve.",
+         "reduces the residual by at least this factor per iteration: it gets the iterations "
+         "this rate needs to reach Solver/Linear/tolerance (a direct solve is exact, so the "
+         "adaptive linear tolerance is not used), and if it has not converged then, the matrix "
+         "is factored anew. Reuse preconditioner = false: a factorisation at every solve.",
          double_range(1e-6, 0.9));
   pl.set("residual check factor", 100.0,
          "After each solve the true relative residual must be below factor * tolerance, "

@@ -89,8 +89,8 @@ class LinearSolver {
   int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
                   bool& converged, std::string& message);
   Teuchos::RCP<Teuchos::ParameterList> belos_parameters(double tol) const;
-  void mumps_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
-                   SolveStats& st, std::string& message);
+  void mumps_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, SolveStats& st,
+                   std::string& message);
   void build_preconditioner(const Teuchos::RCP<Matrix>& A,
                             std::vector<std::string>* unused = nullptr);
   void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);
