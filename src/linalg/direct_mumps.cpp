@@ -8,6 +8,7 @@
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <vector>
 
@@ -226,6 +227,10 @@ void DirectMumps::factor(const RCP<const Matrix>& A) {
   }
   s_->factored = true;
   ++factorisations_;
+  static const bool trace = std::getenv("EMC_MUMPS_TRACE") != nullptr;
+  if (trace && s_->comm->getRank() == 0)  // debugging aid: what each factorisation cost
+    std::fprintf(stderr, "mumps: n %d, ordering %d (ICNTL(7)), %.3g flops, %d factor entries\n",
+                 s_->id.n, s_->id.INFOG(7), s_->id.rinfog[2], s_->id.INFOG(29));
 }
 
 void DirectMumps::solve(const Vector& b, Vector& x) {
