@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "emcontact/linalg/direct_mumps.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
@@ -51,9 +52,15 @@ void LinearSolver::mumps_solve(const RCP<Matrix>& A, const Vector& b, Vector& x,
   if (!mumps_) mumps_ = std::make_shared<DirectMumps>(A->getComm());
   const double tol = tol_;  // see above
   if (reuse_ && reuse_rate_ > 0 && !prec_.is_null()) {
-    const int cap = std::max(1, static_cast<int>(std::ceil(std::log(tol) / std::log(reuse_rate_))));
+    // the iterations the rate needs (1e-9: log(1e-10) / log(0.1) must give 10, not 11)
+    const int cap =
+        std::max(1, static_cast<int>(std::ceil(std::log(tol) / std::log(reuse_rate_) - 1e-9)));
     bool converged = false;
     st.iterations = capped_gmres(A, prec_, b, x, tol, cap, converged);
+    static const bool trace = std::getenv("EMC_MUMPS_TRACE") != nullptr;
+    if (trace && A->getComm()->getRank() == 0)  // debugging aid, as in DirectMumps::factor
+      std::fprintf(stderr, "mumps: reused factors, %d GMRES iterations (at most %d), %s\n",
+                   st.iterations, cap, converged ? "converged" : "refactoring");
     if (converged) {
       message = "GMRES with the MUMPS factors of an earlier matrix, " +
                 std::to_string(st.iterations) + " iterations";
