@@ -25,7 +25,8 @@ class DirectMumps {
   void factor(const Teuchos::RCP<const Matrix>& A);
   /// x = (LU)^-1 b with the last factors (collective).
   void solve(const Vector& b, Vector& x);
-  /// The last factors as a Tpetra operator ((LU)^-1), e.g. a preconditioner of a later matrix.
+  /// The current factors as a Tpetra operator ((LU)^-1), e.g. a preconditioner of a later
+  /// matrix; it refers to this object and is valid while this object lives.
   Teuchos::RCP<Operator> as_operator();
   bool factored() const;
 
