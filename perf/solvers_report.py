@@ -10,7 +10,8 @@ import argparse, csv, datetime, json, os, re, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
 
-CHOICES = [('gmres', 'ilu'), ('gmres', 'schwarz'), ('gmres', 'muelu'), ('cg', 'ilu'), ('klu2', 'none')]
+CHOICES = [('gmres', 'ilu'), ('gmres', 'schwarz'), ('gmres', 'muelu'), ('cg', 'ilu'), ('klu2', 'none'),
+           ('mumps', 'none')]
 
 
 def run(build, size, ranks, typ, prec, steps):
@@ -27,7 +28,8 @@ def run(build, size, ranks, typ, prec, steps):
     tm = re.search(r'emcontact: linear solve\s+(.*)', p.stdout)
     nums = re.findall(r'([\d.e+-]+) \(([\d.e+-]+)\)', tm[1])
     solve_s, calls = float(nums[-2][0] if len(nums) >= 3 else nums[0][0]), float(nums[0][1])
-    pm = re.search(r'emcontact: preconditioner\s+([\d.e+-]+) \(([\d.e+-]+)\)', p.stdout)
+    setup = 'MUMPS factorisation' if typ == 'mumps' else 'preconditioner'  # mumps: its factors
+    pm = re.search(r'emcontact: %s\s+([\d.e+-]+) \(([\d.e+-]+)\)' % setup, p.stdout)
     with open(os.path.join(ROOT, out, 'monitors.csv')) as f:
         rows = list(csv.DictReader(f))[1:]
     its = sum(int(r['linear_iterations']) for r in rows) / max(1, sum(int(r['newton_iterations']) for r in rows))

@@ -19,7 +19,8 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
       tol_(linear.get<double>("tolerance")),
       check_factor_(linear.get<double>("residual check factor")),
       max_iters_(linear.get<int>("max iterations")),
-      reuse_(linear.get<bool>("reuse preconditioner")) {
+      reuse_(linear.get<bool>("reuse preconditioner")),
+      reuse_rate_(linear.get<double>("factorisation reuse rate")) {
   if (linear.isSublist("Belos")) belos_ = linear.sublist("Belos");
   if (linear.isSublist("Ifpack2")) ifpack2_ = linear.sublist("Ifpack2");
   if (linear.isSublist("MueLu")) muelu_ = linear.sublist("MueLu");
@@ -28,11 +29,12 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
         "Solver/Linear/type = klu2 runs on one rank only (Debian's Amesos2 KLU2 is wrong on "
         "2+ ranks); allowed on " +
         std::to_string(comm->getSize()) + " ranks: gmres, cg");
-  if (type_ != "klu2") check_pass_through(comm, file);
+  if (type_ != "klu2" && type_ != "mumps") check_pass_through(comm, file);
 }
 
 std::string LinearSolver::description() const {
   if (type_ == "klu2") return "Amesos2 KLU2";
+  if (type_ == "mumps") return "MUMPS";
   return "Belos " + std::string(type_ == "cg" ? "CG" : "GMRES") + " + " + prec_type_;
 }
 
@@ -101,6 +103,8 @@ SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Ve
   if (type_ == "klu2") {
     klu2_.solve(A, b, x);
     message = "Amesos2 KLU2 direct solve";
+  } else if (type_ == "mumps") {
+    mumps_solve(A, b, x, st, message);  // to tol_: exact like a direct solve
   } else {
     if (prec_.is_null() || !reuse_) {
       build_preconditioner(A);

@@ -27,15 +27,18 @@ void set_newton(Teuchos::ParameterList& pl) {
 void set_linear(Teuchos::ParameterList& pl) {
   pl.set("type", std::string("gmres"),
          "Linear solver: gmres; cg only for a symmetric Newton matrix (the midpoint integrator "
-         "without frictionless contact; otherwise the run warns); klu2, direct, one rank only.",
+         "without frictionless contact; otherwise the run warns); klu2, direct, one rank only; "
+         "mumps, direct, any number of ranks.",
          string_choice(
-             "type", {"gmres", "cg", "klu2"},
+             "type", {"gmres", "cg", "klu2", "mumps"},
              {"Belos GMRES (iterative)",
               "Belos conjugate gradients (iterative; only for a symmetric Newton matrix: the "
               "mid-point integrator without frictionless contact, otherwise the run warns)",
-              "Amesos2 KLU2 (direct)"}));
+              "Amesos2 KLU2 (direct, one rank)",
+              "MUMPS (direct, any number of ranks; its factors are reused as GMRES's "
+              "preconditioner while they work, see factorisation reuse rate)"}));
   pl.set("preconditioner", std::string("ilu"),
-         "Preconditioner of the iterative solvers (ignored by klu2).",
+         "Preconditioner of the iterative solvers (ignored by klu2 and mumps).",
          string_choice("preconditioner", {"ilu", "schwarz", "muelu", "none"},
                        {"Ifpack2 ILU", "Ifpack2 additive Schwarz", "MueLu algebraic multigrid",
                         "no preconditioner"}));
@@ -49,6 +52,13 @@ void set_linear(Teuchos::ParameterList& pl) {
   pl.set("max iterations", 1000, "Iterations of the iterative solvers.", int_at_least(1));
   pl.set("reuse preconditioner", true,
          "Reuse the preconditioner setup across solves where possible.");
+  pl.set("factorisation reuse rate", 0.1,
+         "mumps: the factors of an earlier matrix stay GMRES's preconditioner while GMRES "
+         "reduces the residual by at least this factor per iteration: it gets the iterations "
+         "this rate needs to reach Solver/Linear/tolerance (a direct solve is exact, so the "
+         "adaptive linear tolerance is not used), and if it has not converged then, the matrix "
+         "is factored anew. Reuse preconditioner = false: a factorisation at every solve.",
+         double_range(1e-6, 0.9));
   pl.set("residual check factor", 100.0,
          "After each solve the true relative residual must be below factor * tolerance, "
          "else the run fails.",

@@ -1,11 +1,11 @@
 #pragma once
 // The linear solver behind one interface: Belos (GMRES, or CG for symmetric matrices) with an
-// Ifpack2 (ILU, additive Schwarz) or MueLu preconditioner on any number of ranks, or Amesos2
-// KLU2 on one rank. The preconditioner is reused across Newton iterations and steps while the
-// iteration count stays near the count of a fresh one. After every solve the true residual
-// is checked; a failure, or an exception of Belos, Ifpack2, MueLu or Amesos2 (a NaN in the
-// matrix), throws LinearSolveError with the solver's own message on one line, which the time
-// stepper treats as a failed step (dt halved).
+// Ifpack2 (ILU, additive Schwarz) or MueLu preconditioner on any number of ranks, Amesos2
+// KLU2 on one rank, or MUMPS on any number of ranks. The preconditioner is reused across Newton
+// iterations and steps while the iteration count stays near the count of a fresh one. After every
+// solve the true residual is checked; a failure, or an exception of Belos, Ifpack2, MueLu or
+// Amesos2 (a NaN in the matrix), throws LinearSolveError with the solver's own message on one line,
+// which the time stepper treats as a failed step (dt halved).
 #include <Teuchos_ParameterList.hpp>
 #include <memory>
 #include <string>
@@ -15,6 +15,8 @@
 #include "emcontact/types.hpp"
 
 namespace emc::linalg {
+
+class DirectMumps;
 
 class LinearSolveError : public RunError {
  public:
@@ -79,12 +81,16 @@ class LinearSolver {
   Teuchos::ParameterList belos_, ifpack2_, muelu_;
   Teuchos::RCP<Operator> prec_;
   DirectKlu2 klu2_;
+  std::shared_ptr<DirectMumps> mumps_;  ///< type mumps; prec_ is then its factors' inverse
+  double reuse_rate_;
   double fresh_rate_ = 0;  ///< Krylov iterations per decade of a fresh preconditioner
 
   SolveStats checked_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol);
   int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
                   bool& converged, std::string& message);
   Teuchos::RCP<Teuchos::ParameterList> belos_parameters(double tol) const;
+  void mumps_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, SolveStats& st,
+                   std::string& message);
   void build_preconditioner(const Teuchos::RCP<Matrix>& A,
                             std::vector<std::string>* unused = nullptr);
   void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);

@@ -6,9 +6,9 @@
 namespace emc::linalg {
 
 /// Valid parameters of `Solver`: sublist `Newton` (`relative tolerance`, `absolute tolerance`,
-/// `max iterations`) and sublist `Linear` (`type`: gmres | cg | klu2, `preconditioner`:
+/// `max iterations`) and sublist `Linear` (`type`: gmres | cg | klu2 | mumps, `preconditioner`:
 /// ilu | schwarz | muelu | none, `tolerance`, `max iterations`, `reuse preconditioner`,
-/// `residual check factor`, and the pass-through sublists `Belos`, `Ifpack2`, `MueLu` whose
+/// `factorisation reuse rate`, `residual check factor`, and the pass-through sublists `Belos`, `Ifpack2`, `MueLu` whose
 /// contents go unchanged to Trilinos).
 Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
 
