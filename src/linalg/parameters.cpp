@@ -49,6 +49,26 @@ void set_linear(Teuchos::ParameterList& pl) {
   pl.set("max iterations", 1000, "Iterations of the iterative solvers.", int_at_least(1));
   pl.set("reuse preconditioner", true,
          "Reuse the preconditioner setup across solves where possible.");
+  pl.set("multigrid near null space", std::string("rigid body modes"),
+         "What smoothed aggregation (preconditioner = muelu) must represent on coarse levels.",
+         string_choice("multigrid near null space", {"rigid body modes", "translations"},
+                       {"the six rigid-body modes of the node positions (3D elasticity)",
+                        "MueLu's default: one constant vector per dof (the translations)"}));
+  pl.set("multigrid positions", std::string("current"),
+         "The node positions the rigid-body modes are built from, at each multigrid setup.",
+         string_choice("multigrid positions", {"current", "reference"},
+                       {"X + u of the Newton iterate (the deformed body's rotations)",
+                        "the reference coordinates X"}));
+  pl.set("multigrid modes zero at eliminated dofs", false,
+         "Set the rigid-body modes to zero at eliminated dofs (Dirichlet and contact-slave "
+         "dummy rows, which are decoupled from the others); false: the modes as they are.");
+  pl.set("multigrid reuse", std::string("refresh"),
+         "What a new active set (or a reused hierarchy that has become slow) does to the "
+         "multigrid preconditioner before a full rebuild.",
+         string_choice("multigrid reuse", {"refresh", "rebuild"},
+                       {"recompute coarse operators and smoothers, keep aggregates and "
+                        "prolongators (MueLu reuse: type = RP); a full rebuild if still slow",
+                        "a full rebuild"}));
   pl.set("residual check factor", 100.0,
          "After each solve the true relative residual must be below factor * tolerance, "
          "else the run fails.",
