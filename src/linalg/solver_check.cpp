@@ -16,12 +16,13 @@ namespace {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
-/// A small SPD tridiagonal matrix, 6 rows (2 nodes of 3 dofs, as MueLu expects) per rank.
-RCP<Matrix> test_matrix(const RCP<const Comm>& comm) {
-  const GO n = 6 * comm->getSize();
-  auto map = rcp(new Map(n, 6, 0, comm));
+/// An SPD tridiagonal matrix with `rows` rows (a multiple of 3: nodes of 3 dofs, as MueLu
+/// expects) per rank.
+RCP<Matrix> test_matrix(const RCP<const Comm>& comm, LO rows) {
+  const GO n = GO(rows) * comm->getSize();
+  auto map = rcp(new Map(n, rows, 0, comm));
   auto A = rcp(new Matrix(map, 3));
-  for (LO l = 0; l < 6; ++l) {
+  for (LO l = 0; l < rows; ++l) {
     const GO g = map->getGlobalElement(l);
     std::vector<GO> cols{g};
     std::vector<double> vals{4.0};
@@ -63,7 +64,9 @@ std::string one_line(const std::string& message) {
 
 void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
   const std::string where = file.empty() ? "" : file + ": ";
-  const auto A = test_matrix(comm);
+  // MueLu: above its default coarse size (2000 rows), so that the smoothers of a fine level are
+  // set up too (a smoother parameter of the wrong type was otherwise found only mid-run)
+  const auto A = test_matrix(comm, prec_type_ == "muelu" ? 2400 : 6);
   std::vector<std::string> unused;
   const std::string prec = prec_type_ == "muelu" ? "MueLu" : "Ifpack2";
   try {
