@@ -25,8 +25,10 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
       null_space_(linear.get<std::string>("multigrid near null space")),
       positions_type_(linear.get<std::string>("multigrid positions")),
       zero_eliminated_(linear.get<bool>("multigrid modes zero at eliminated dofs")),
-      refreshable_(prec_type_ == "muelu" &&
-                   linear.get<std::string>("multigrid reuse") == "refresh") {
+      refresh_(linear.get<std::string>("multigrid reuse") == "refresh"),
+      refreshable_(prec_type_ == "muelu" && refresh_),
+      auto_(prec_type_ == "auto"),
+      auto_dofs_(linear.get<int>("multigrid from equations")) {
   if (linear.isSublist("Belos")) belos_ = linear.sublist("Belos");
   if (linear.isSublist("Ifpack2")) ifpack2_ = linear.sublist("Ifpack2");
   if (linear.isSublist("MueLu")) muelu_ = linear.sublist("MueLu");
@@ -48,6 +50,12 @@ void LinearSolver::matrix_changed() {
     stale_ = true;
   else
     prec_ = Teuchos::null;
+}
+
+void LinearSolver::choose_preconditioner(const RCP<Matrix>& A) {
+  const bool large = static_cast<long long>(A->getGlobalNumRows()) >= auto_dofs_;
+  prec_type_ = large && muelu_available() ? "muelu" : "ilu";
+  refreshable_ = prec_type_ == "muelu" && refresh_;
 }
 
 void LinearSolver::setup_preconditioner(const RCP<Matrix>& A, int level) {
@@ -143,6 +151,7 @@ SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Ve
     int level = prec_.is_null() || !reuse_ ? 2 : stale_ ? 1 : 0;
     for (;;) {
       if (level == 1 && !refreshable_) level = 2;
+      if (level == 2 && auto_) choose_preconditioner(A);
       if (level > 0) setup_preconditioner(A, level);
       bool converged = false;
       const int its = belos_solve(A, b, x, tol, converged, message);

@@ -24,7 +24,7 @@ Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::
   throw std::runtime_error(
       "Linear solver/preconditioner = \"muelu\": this build of emcontact has no MueLu (the "
       "Trilinos "
-      "it was built against lacks it); allowed here: ilu, schwarz, none");
+      "it was built against lacks it); allowed here: auto, ilu, schwarz, none");
 #else
   Teuchos::ParameterList p;
   p.set("number of equations", 3);
@@ -52,6 +52,14 @@ Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::
   if (!coordinates.is_null()) p.sublist("user data").set("Coordinates", coordinates);
   Teuchos::RCP<Operator> op = A;
   return MueLu::CreateTpetraPreconditioner(op, p);
+#endif
+}
+
+bool muelu_available() {
+#ifdef EMC_HAVE_MUELU
+  return true;
+#else
+  return false;
 #endif
 }
 

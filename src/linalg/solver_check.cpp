@@ -62,13 +62,15 @@ std::string one_line(const std::string& message) {
   return out.empty() ? "(no message)" : out;
 }
 
-void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
-  const std::string where = file.empty() ? "" : file + ": ";
+/// Builds the preconditioner `type` on a test matrix and returns the matrix (prec_ is set).
+RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
+                                               const std::string& where, const std::string& type) {
+  prec_type_ = type;
   // MueLu: above its default coarse size (2000 rows), so that the smoothers of a fine level are
   // set up too (a smoother parameter of the wrong type was otherwise found only mid-run)
-  const auto A = test_matrix(comm, prec_type_ == "muelu" ? 2400 : 6);
+  const auto A = test_matrix(comm, type == "muelu" ? 2400 : 6);
   std::vector<std::string> unused;
-  const std::string prec = prec_type_ == "muelu" ? "MueLu" : "Ifpack2";
+  const std::string prec = type == "muelu" ? "MueLu" : "Ifpack2";
   try {
     build_preconditioner(A, &unused);
   } catch (const std::exception& e) {
@@ -79,6 +81,18 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
   if (!unused.empty() && comm->getRank() == 0)
     std::fprintf(stderr, "warning: %sSolver/Linear/Ifpack2: %s not known to Ifpack2 (typo?)\n",
                  where.c_str(), quoted_list(unused).c_str());
+  return A;
+}
+
+void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
+  const std::string where = file.empty() ? "" : file + ": ";
+  RCP<Matrix> A;
+  if (auto_) {  // either may be chosen: both are tried
+    A = check_preconditioner(comm, where, "ilu");
+    if (muelu_available()) A = check_preconditioner(comm, where, "muelu");
+  } else {
+    A = check_preconditioner(comm, where, prec_type_);
+  }
   const std::string name = type_ == "cg" ? "CG" : "GMRES";
   try {
     Belos::SolverFactory<double, MultiVector, Operator> factory;
@@ -102,6 +116,7 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
                      "; allowed: parameters Belos accepts (see its documentation)");
   }
   prec_ = Teuchos::null;  // the run's matrix gets its own
+  if (auto_) prec_type_ = "auto";
 }
 
 }  // namespace emc::linalg

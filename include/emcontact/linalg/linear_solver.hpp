@@ -37,6 +37,8 @@ Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<
 Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::ParameterList& user,
                                   const Teuchos::RCP<MultiVector>& nullspace = Teuchos::null,
                                   const Teuchos::RCP<MultiVector>& coordinates = Teuchos::null);
+/// True when emcontact was built with MueLu (the OpenMP Trilinos of perf/ has none).
+bool muelu_available();
 /// Recomputes a make_muelu preconditioner for a new matrix of the same map, keeping what its
 /// `reuse: type` keeps (by default the prolongators: only coarse operators and smoothers).
 void refresh_muelu(const Teuchos::RCP<Matrix>& A, Operator& prec);
@@ -81,7 +83,9 @@ class LinearSolver {
   /// smoothers recomputed for it (its aggregates and prolongators kept).
   void matrix_changed();
   /// True when the preconditioner is built from node positions (multigrid's rigid-body modes).
-  bool uses_positions() const { return prec_type_ == "muelu" && null_space_ == "rigid body modes"; }
+  bool uses_positions() const {
+    return (prec_type_ == "muelu" || auto_) && null_space_ == "rigid body modes";
+  }
   /// The configuration of the next solves: reference positions X (coordinate c of node n at dof
   /// 3 n + c, the matrix's row map) and displacements u; the next preconditioner built takes
   /// its rigid-body modes from X + u or X (Solver/Linear/multigrid positions).
@@ -99,7 +103,10 @@ class LinearSolver {
   double fresh_rate_ = 0;  ///< Krylov iterations per decade of a fresh preconditioner
   std::string null_space_, positions_type_;  ///< multigrid near null space and its positions
   bool zero_eliminated_ = false;             ///< modes zero at eliminated (decoupled) dofs
-  bool refreshable_ = false;                 ///< multigrid reuse = refresh
+  bool refresh_ = false;                     ///< multigrid reuse = refresh (if muelu)
+  bool refreshable_ = false;                 ///< refresh_ and the preconditioner is muelu
+  bool auto_ = false;                        ///< preconditioner = auto: chosen by size
+  long long auto_dofs_ = 0;                  ///< auto: muelu from this many equations
   bool stale_ = false;                       ///< prec_ is for an earlier structure: refresh
   Teuchos::RCP<Vector> positions_;           ///< node positions for the next multigrid build
 
@@ -112,7 +119,11 @@ class LinearSolver {
   void build_preconditioner(const Teuchos::RCP<Matrix>& A,
                             std::vector<std::string>* unused = nullptr);
   Teuchos::RCP<Operator> make_muelu_with_modes(const Teuchos::RCP<Matrix>& A) const;
+  /// preconditioner = auto: muelu for A of at least auto_dofs_ rows, else ilu.
+  void choose_preconditioner(const Teuchos::RCP<Matrix>& A);
   void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);
+  Teuchos::RCP<Matrix> check_preconditioner(const Teuchos::RCP<const Comm>& comm,
+                                            const std::string& where, const std::string& type);
 };
 
 }  // namespace emc::linalg

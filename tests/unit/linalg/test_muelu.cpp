@@ -42,10 +42,12 @@ struct Box {
   }
 };
 
-/// The validated Solver/Linear list with muelu and the given overrides.
-Teuchos::ParameterList linear_parameters(const std::string& null_space) {
+/// The validated Solver/Linear list with the given preconditioner and near null space.
+Teuchos::ParameterList linear_parameters(const std::string& null_space,
+                                         const std::string& prec = "muelu", int from = 150000) {
   Teuchos::ParameterList p;
-  p.set("preconditioner", std::string("muelu"));
+  p.set("preconditioner", prec);
+  p.set("multigrid from equations", from);
   p.set("tolerance", 1e-10);
   p.set("multigrid near null space", null_space);
   p.validateParametersAndSetDefaults(linalg::valid_parameters()->sublist("Linear"));
@@ -98,19 +100,25 @@ TEST(RigidModes, ZeroAtEliminatedDofs) {
         EXPECT_EQ(m(l, j), 1.0);
 }
 
+/// The Newton matrix of the box clamped at its bottom (z = 0.5), P^T A P + D.
+Teuchos::RCP<Matrix> clamped(Box& box, linalg::Elimination& elim) {
+  const auto map = box.disc->owned_map();
+  std::vector<GO> fixed;
+  const auto X = box.X->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (LO l = 0; l < static_cast<LO>(map->getNodeNumElements()); ++l)
+    if (std::fabs(X(l - l % 3 + 2, 0) - 0.5) < 1e-12) fixed.push_back(map->getGlobalElement(l));
+  elim.set_constraints(fixed, {}, {});
+  return elim.reduce_matrix(box.A);
+}
+
 // The box clamped at z = 0.5 (its bottom), dt 100x the explicit step (stiffness-dominated),
 // solved to 1e-10 with GMRES + smoothed aggregation: the true residual |b - A x| / |b|
 // is within the solver's own check (100 x tolerance), with rigid-body modes and translations.
 TEST(MueLuSolve, ReachesTrueResidual) {
   Box box(1e-2);
   const auto map = box.disc->owned_map();
-  std::vector<GO> fixed;
-  const auto X = box.X->getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (LO l = 0; l < static_cast<LO>(map->getNodeNumElements()); ++l)
-    if (std::fabs(X(l - l % 3 + 2, 0) - 0.5) < 1e-12) fixed.push_back(map->getGlobalElement(l));
   linalg::Elimination elim(map);
-  elim.set_constraints(fixed, {}, {});
-  const auto Ar = elim.reduce_matrix(box.A);
+  const auto Ar = clamped(box, elim);
   for (const std::string ns : {"rigid body modes", "translations"}) {
     linalg::LinearSolver solver(linear_parameters(ns), map->getComm());
     Vector u(map), b(map), x(map), r(map);
@@ -124,5 +132,28 @@ TEST(MueLuSolve, ReachesTrueResidual) {
     EXPECT_LT(r.norm2() / b.norm2(), 1e-8) << ns;
     EXPECT_NEAR(st.true_residual, r.norm2() / b.norm2(), 1e-14) << ns;
     EXPECT_GT(st.iterations, 0) << ns;
+  }
+}
+
+// preconditioner = auto takes muelu from `multigrid from equations` on (the box has 1029), ilu
+// below, and both reach the true residual.
+TEST(MueLuSolve, AutoChoosesBySize) {
+  Box box(1e-2);
+  const auto map = box.disc->owned_map();
+  linalg::Elimination elim(map);
+  const auto Ar = clamped(box, elim);
+  for (const int from : {1000, 2000}) {
+    linalg::LinearSolver solver(linear_parameters("rigid body modes", "auto", from),
+                                map->getComm());
+    EXPECT_TRUE(solver.uses_positions());
+    Vector u(map), b(map), x(map), r(map);
+    solver.set_configuration(*box.X, u);
+    b.randomize();
+    elim.reduce_residual(b, r);
+    Tpetra::deep_copy(b, r);
+    const auto st = solver.solve(Ar, b, x);
+    EXPECT_LT(st.true_residual, 1e-8);
+    const std::string chosen = from <= 1029 ? "muelu" : "ilu";
+    EXPECT_NE(solver.description().find(chosen), std::string::npos) << solver.description();
   }
 }
