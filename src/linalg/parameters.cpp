@@ -59,7 +59,7 @@ void set_linear(Teuchos::ParameterList& pl) {
   pl.set("multigrid from equations", 150000,
          "With preconditioner = auto: muelu for Newton systems of at least this many equations "
          "(3 per node), ilu below (measured: ilu faster on the 8k-tet ball, equal at 65k tets "
-         "(39k equations), muelu 1.5x faster in flight and 1.2x through an impact at 506k tets).",
+         "(38k equations), muelu 1.5x faster in flight and 1.2x through an impact at 506k tets).",
          int_at_least(1));
   pl.set("multigrid near null space", std::string("rigid body modes"),
          "What the aggregation multigrid (preconditioner = muelu) must represent on coarse levels.",
