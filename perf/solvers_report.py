@@ -10,20 +10,27 @@ import argparse, csv, datetime, json, os, re, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
 
-CHOICES = [('gmres', 'ilu'), ('gmres', 'schwarz'), ('gmres', 'muelu'), ('cg', 'ilu'), ('klu2', 'none'),
-           ('mumps', 'none')]
+# (type, preconditioner, label, extra --set): muelu with the six rigid-body modes (the default
+# near null space) and with MueLu's own translations only
+CHOICES = [('gmres', 'ilu', 'ilu', []), ('gmres', 'schwarz', 'schwarz', []),
+           ('gmres', 'muelu', 'muelu (rigid-body modes)', []),
+           ('gmres', 'muelu', 'muelu (translations)', ['Solver/Linear/multigrid near null space=translations']),
+           ('cg', 'ilu', 'ilu', []), ('klu2', 'none', 'none', []),
+           ('mumps', 'none', 'none', [])]
 
 
-def run(build, size, ranks, typ, prec, steps):
-    out = 'out/solver_%s_%s_%s_np%d' % (size, typ, prec, ranks)
+def run(build, size, ranks, typ, prec, label, extra, steps):
+    out = 'out/solver_%s_%s_%s_np%d' % (size, typ, re.sub(r'\W+', '_', label), ranks)
     cmd = ([] if ranks == 1 else ['mpirun', '--oversubscribe', '-np', str(ranks)]) + [
         os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out, '--overwrite',
         '--set', 'Bodies/ball/Mesh/size=%s' % size, '--set', 'Time/end=%g' % (steps * 0.001),
         '--set', 'Solver/Linear/type=%s' % typ, '--set', 'Solver/Linear/preconditioner=%s' % prec,
         '--set', 'Output/every=0', '--set', 'Output/plot=false', '--set', 'Output/progress=false']
+    for e in extra:
+        cmd += ['--set', e]
     p = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT)
     if p.returncode != 0:
-        return dict(size=size, ranks=ranks, type=typ, prec=prec, error=(p.stdout + p.stderr).strip().splitlines()[-1][:200])
+        return dict(size=size, ranks=ranks, type=typ, prec=label, error=(p.stdout + p.stderr).strip().splitlines()[-1][:200])
     m = re.search(r'emcontact: (\d+) tets.*?(\d+) steps to .*? \(([\d.]+) s/step', p.stdout)
     tm = re.search(r'emcontact: linear solve\s+(.*)', p.stdout)
     nums = re.findall(r'([\d.e+-]+) \(([\d.e+-]+)\)', tm[1])
@@ -33,7 +40,7 @@ def run(build, size, ranks, typ, prec, steps):
     with open(os.path.join(ROOT, out, 'monitors.csv')) as f:
         rows = list(csv.DictReader(f))[1:]
     its = sum(int(r['linear_iterations']) for r in rows) / max(1, sum(int(r['newton_iterations']) for r in rows))
-    return dict(size=size, ranks=ranks, type=typ, prec=prec, tets=int(m[1]), s_per_step=float(m[3]),
+    return dict(size=size, ranks=ranks, type=typ, prec=label, tets=int(m[1]), s_per_step=float(m[3]),
                 solve_per_newton=solve_s / calls, krylov_per_solve=its,
                 prec_setups=int(float(pm[2])) if pm else 0, prec_s=float(pm[1]) if pm else 0.0)
 
@@ -47,11 +54,11 @@ def main():
     build = os.path.join(ROOT, a.build)
     res = []
     for size in a.sizes:
-        for typ, prec in CHOICES:
+        for typ, prec, label, extra in CHOICES:
             for ranks in (1, 2):
                 if typ == 'klu2' and (ranks > 1 or size != a.sizes[0]):
                     continue  # one rank only; too slow to factor beyond small problems
-                res.append(run(build, size, ranks, typ, prec, a.steps))
+                res.append(run(build, size, ranks, typ, prec, label, extra, a.steps))
                 print(res[-1], flush=True)
     json.dump(dict(date=datetime.date.today().isoformat(), runs=res),
               open(os.path.join(ROOT, 'perf', 'results', 'solvers.json'), 'w'), indent=1)

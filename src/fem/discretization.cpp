@@ -38,6 +38,14 @@ void Discretization::build_maps() {
   exporter_ = rcp(new Export(overlap_, owned_));
 }
 
+Teuchos::RCP<Vector> Discretization::reference_positions() const {
+  auto X = rcp(new Vector(owned_));
+  auto x = X->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  for (size_t i = 0; i < x.extent(0); ++i)
+    x(i, 0) = model_.X[owned_->getGlobalElement(static_cast<LO>(i))];
+  return X;
+}
+
 void Discretization::build_element_data() {
   const int ne = static_cast<int>(part_.my_tets.size());
   auto& ev = ev_;

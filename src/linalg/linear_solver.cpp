@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "emcontact/linalg/rigid_modes.hpp"
+
 namespace emc::linalg {
 
 using Teuchos::RCP;
@@ -20,7 +22,14 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
       check_factor_(linear.get<double>("residual check factor")),
       max_iters_(linear.get<int>("max iterations")),
       reuse_(linear.get<bool>("reuse preconditioner")),
-      reuse_rate_(linear.get<double>("factorisation reuse rate")) {
+      reuse_rate_(linear.get<double>("factorisation reuse rate")),
+      null_space_(linear.get<std::string>("multigrid near null space")),
+      positions_type_(linear.get<std::string>("multigrid positions")),
+      zero_eliminated_(linear.get<bool>("multigrid modes zero at eliminated dofs")),
+      refresh_(linear.get<std::string>("multigrid reuse") == "refresh"),
+      refreshable_(prec_type_ == "muelu" && refresh_),
+      auto_(prec_type_ == "auto"),
+      auto_dofs_(linear.get<int>("multigrid from equations")) {
   if (linear.isSublist("Belos")) belos_ = linear.sublist("Belos");
   if (linear.isSublist("Ifpack2")) ifpack2_ = linear.sublist("Ifpack2");
   if (linear.isSublist("MueLu")) muelu_ = linear.sublist("MueLu");
@@ -38,14 +47,49 @@ std::string LinearSolver::description() const {
   return "Belos " + std::string(type_ == "cg" ? "CG" : "GMRES") + " + " + prec_type_;
 }
 
+void LinearSolver::matrix_changed() {
+  if (refreshable_ && !prec_.is_null())
+    stale_ = true;
+  else
+    prec_ = Teuchos::null;
+}
+
+void LinearSolver::choose_preconditioner(const RCP<Matrix>& A) {
+  const bool large = static_cast<long long>(A->getGlobalNumRows()) >= auto_dofs_;
+  prec_type_ = large && muelu_available() ? "muelu" : "ilu";
+  refreshable_ = prec_type_ == "muelu" && refresh_;
+}
+
+void LinearSolver::setup_preconditioner(const RCP<Matrix>& A, int level) {
+  stale_ = false;
+  if (level == 2) return build_preconditioner(A);
+  Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: preconditioner"));
+  refresh_muelu(A, *prec_);
+}
+
 void LinearSolver::build_preconditioner(const RCP<Matrix>& A, std::vector<std::string>* unused) {
   Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: preconditioner"));
   if (prec_type_ == "none")
     prec_ = Teuchos::null;
   else if (prec_type_ == "muelu")
-    prec_ = make_muelu(A, muelu_);
+    prec_ = make_muelu_with_modes(A);
   else
     prec_ = make_ifpack2(prec_type_, A, ifpack2_, unused);
+}
+
+void LinearSolver::set_configuration(const Vector& X, const Vector& u) {
+  if (positions_.is_null() || !positions_->getMap()->isSameAs(*X.getMap()))
+    positions_ = rcp(new Vector(X.getMap()));
+  positions_->update(1.0, X, positions_type_ == "current" ? 1.0 : 0.0, u, 0.0);
+}
+
+// The rigid-body modes of the positions last given (none given, e.g. the setup check: MueLu's
+// default, one constant vector per dof).
+RCP<Operator> LinearSolver::make_muelu_with_modes(const RCP<Matrix>& A) const {
+  if (!uses_positions() || positions_.is_null() || !positions_->getMap()->isSameAs(*A->getRowMap()))
+    return make_muelu(A, muelu_);
+  return make_muelu(A, muelu_, rigid_body_modes(*positions_, zero_eliminated_ ? A.get() : nullptr),
+                    node_coordinates(*positions_));
 }
 
 RCP<Teuchos::ParameterList> LinearSolver::belos_parameters(double tol) const {
@@ -106,22 +150,25 @@ SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Ve
   } else if (type_ == "mumps") {
     mumps_solve(A, b, x, st, message);  // to tol_: exact like a direct solve
   } else {
-    if (prec_.is_null() || !reuse_) {
-      build_preconditioner(A);
-      st.fresh_preconditioner = true;
-    }
-    bool converged = false;
-    int its = belos_solve(A, b, x, tol, converged, message);
-    st.iterations = its;
-    const double expected = fresh_rate_ * decades;  // what a fresh one needs for this tol
-    const bool slow = its > std::max(2 * expected, expected + 10);
-    if (!st.fresh_preconditioner && (!converged || slow)) {  // the reused one stopped working
-      build_preconditioner(A);
-      st.fresh_preconditioner = true;
-      its = belos_solve(A, b, x, tol, converged, message);
+    // 0: the last preconditioner as it is; 1: refreshed for A; 2: built fresh for A. A reused
+    // one that is slow or fails moves up a level and the solve is repeated.
+    int level = prec_.is_null() || !reuse_ ? 2 : stale_ ? 1 : 0;
+    for (;;) {
+      if (level == 1 && !refreshable_) level = 2;
+      if (level == 2 && auto_) choose_preconditioner(A);
+      if (level > 0) setup_preconditioner(A, level);
+      bool converged = false;
+      const int its = belos_solve(A, b, x, tol, converged, message);
       st.iterations += its;
+      if (level == 2) {
+        fresh_rate_ = its / decades;  // what a fresh one achieves
+        break;
+      }
+      const double expected = fresh_rate_ * decades;  // what a fresh one needs for this tol
+      if (converged && its <= std::max(2 * expected, expected + 10)) break;
+      ++level;
     }
-    if (st.fresh_preconditioner) fresh_rate_ = its / decades;  // what a fresh one achieves
+    st.fresh_preconditioner = level == 2;
   }
   // true residual check
   Vector r(b.getMap());

@@ -16,12 +16,13 @@ namespace {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
-/// A small SPD tridiagonal matrix, 6 rows (2 nodes of 3 dofs, as MueLu expects) per rank.
-RCP<Matrix> test_matrix(const RCP<const Comm>& comm) {
-  const GO n = 6 * comm->getSize();
-  auto map = rcp(new Map(n, 6, 0, comm));
+/// An SPD tridiagonal matrix with `rows` rows (a multiple of 3: nodes of 3 dofs, as MueLu
+/// expects) per rank.
+RCP<Matrix> test_matrix(const RCP<const Comm>& comm, LO rows) {
+  const GO n = GO(rows) * comm->getSize();
+  auto map = rcp(new Map(n, rows, 0, comm));
   auto A = rcp(new Matrix(map, 3));
-  for (LO l = 0; l < 6; ++l) {
+  for (LO l = 0; l < rows; ++l) {
     const GO g = map->getGlobalElement(l);
     std::vector<GO> cols{g};
     std::vector<double> vals{4.0};
@@ -61,11 +62,15 @@ std::string one_line(const std::string& message) {
   return out.empty() ? "(no message)" : out;
 }
 
-void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
-  const std::string where = file.empty() ? "" : file + ": ";
-  const auto A = test_matrix(comm);
+/// Builds the preconditioner `type` on a test matrix and returns the matrix (prec_ is set).
+RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
+                                               const std::string& where, const std::string& type) {
+  prec_type_ = type;
+  // MueLu: above its default coarse size (2000 rows), so that the smoothers of a fine level are
+  // set up too (a smoother parameter of the wrong type was otherwise found only mid-run)
+  const auto A = test_matrix(comm, type == "muelu" ? 2400 : 6);
   std::vector<std::string> unused;
-  const std::string prec = prec_type_ == "muelu" ? "MueLu" : "Ifpack2";
+  const std::string prec = type == "muelu" ? "MueLu" : "Ifpack2";
   try {
     build_preconditioner(A, &unused);
   } catch (const std::exception& e) {
@@ -76,6 +81,18 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
   if (!unused.empty() && comm->getRank() == 0)
     std::fprintf(stderr, "warning: %sSolver/Linear/Ifpack2: %s not known to Ifpack2 (typo?)\n",
                  where.c_str(), quoted_list(unused).c_str());
+  return A;
+}
+
+void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
+  const std::string where = file.empty() ? "" : file + ": ";
+  RCP<Matrix> A;
+  if (auto_) {  // either may be chosen: both are tried
+    A = check_preconditioner(comm, where, "ilu");
+    if (muelu_available()) A = check_preconditioner(comm, where, "muelu");
+  } else {
+    A = check_preconditioner(comm, where, prec_type_);
+  }
   const std::string name = type_ == "cg" ? "CG" : "GMRES";
   try {
     Belos::SolverFactory<double, MultiVector, Operator> factory;
@@ -99,6 +116,7 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
                      "; allowed: parameters Belos accepts (see its documentation)");
   }
   prec_ = Teuchos::null;  // the run's matrix gets its own
+  if (auto_) prec_type_ = "auto";
 }
 
 }  // namespace emc::linalg

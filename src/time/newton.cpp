@@ -28,6 +28,7 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
     : disc_(disc), elim_(elim), solver_(solver), opt_(opt) {
   A_ = rcp(new FEMatrix(disc_.graph()));
   g_ = rcp(new Vector(disc_.owned_map()));
+  if (solver_.uses_positions()) X_ = disc_.reference_positions();
 }
 
 // Inexact Newton around ALGORITHM.md §1's Newton (its convergence test and round-off floor
@@ -146,6 +147,7 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       Ar = elim_.reduce_matrix(A_);
     }
     R.scale(-1.0);
+    if (!X_.is_null()) solver_.set_configuration(*X_, u1);
     try {
       TimeMonitor tm(t_solve);
       const auto st = solver_.solve(Ar, R, dq, linear_tolerance(res.residuals, floor));

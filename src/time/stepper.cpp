@@ -40,11 +40,11 @@ bool Stepper::finished() const {
   return s_.t >= end_ - 1e-9 * dt_;
 }
 
-// The active set's constraints for the next solve; a new P invalidates the preconditioner.
+// The active set's constraints for the next solve; a new P makes the preconditioner stale.
 void Stepper::apply(std::vector<contact::Active>& active) {
   if (!contact_) return;
   Teuchos::TimeMonitor tm(contact_timer());  // constraint rows and the new P (§2-§3)
-  if (constraints_->use(&active)) newton_.solver().invalidate();
+  if (constraints_->use(&active)) newton_.solver().matrix_changed();
 }
 
 // One step of size h with the active-set loop of ALGORITHM.md §6; false if Newton failed.

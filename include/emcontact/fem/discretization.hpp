@@ -54,6 +54,9 @@ class Discretization {
   Teuchos::RCP<const Map> element_map() const { return elements_; }  ///< my tets
   Teuchos::RCP<FEGraph> graph() const { return graph_; }
 
+  /// The reference coordinates of the owned nodes: coordinate c of node n at dof 3 n + c.
+  Teuchos::RCP<Vector> reference_positions() const;
+
   /// Copies owned values to an owned+shared vector.
   void to_overlap(const Vector& owned, Vector& overlap) const;
   Teuchos::RCP<Vector> new_overlap_vector() const;

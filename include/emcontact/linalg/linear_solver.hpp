@@ -34,8 +34,16 @@ struct SolveStats {
 Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<const Matrix>& A,
                                     const Teuchos::ParameterList& user,
                                     std::vector<std::string>* unused = nullptr);
-Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A,
-                                  const Teuchos::ParameterList& user);
+/// Smoothed aggregation with 3 dofs per node; `nullspace` (rigid-body modes) and `coordinates`
+/// (node map) go to MueLu's user data when not null.
+Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::ParameterList& user,
+                                  const Teuchos::RCP<MultiVector>& nullspace = Teuchos::null,
+                                  const Teuchos::RCP<MultiVector>& coordinates = Teuchos::null);
+/// True when emcontact was built with MueLu (the OpenMP Trilinos of perf/ has none).
+bool muelu_available();
+/// Recomputes a make_muelu preconditioner for a new matrix of the same map, keeping what its
+/// `reuse: type` keeps (by default the prolongators: only coarse operators and smoothers).
+void refresh_muelu(const Teuchos::RCP<Matrix>& A, Operator& prec);
 /// x = A^-1 b with Amesos2 KLU2 (one rank only), keeping the symbolic factorisation while
 /// the matrix's graph is the same object.
 class DirectKlu2 {
@@ -69,8 +77,21 @@ class LinearSolver {
   /// The input's (tightest) relative tolerance.
   double tolerance() const { return tol_; }
 
-  /// Forces a fresh preconditioner at the next solve (e.g. after a change of the active set).
+  /// Forces a fresh preconditioner at the next solve (after a checkpoint, so that a restart
+  /// continues bit for bit).
   void invalidate() { prec_ = Teuchos::null; }
+  /// The matrix changed in structure (a new active set): a fresh preconditioner at the next
+  /// solve, or with `multigrid reuse = refresh` the multigrid hierarchy's coarse operators and
+  /// smoothers recomputed for it (its aggregates and prolongators kept).
+  void matrix_changed();
+  /// True when the preconditioner is built from node positions (multigrid's rigid-body modes).
+  bool uses_positions() const {
+    return (prec_type_ == "muelu" || auto_) && null_space_ == "rigid body modes";
+  }
+  /// The configuration of the next solves: reference positions X (coordinate c of node n at dof
+  /// 3 n + c, the matrix's row map) and displacements u; the next preconditioner built takes
+  /// its rigid-body modes from X + u or X (Solver/Linear/multigrid positions).
+  void set_configuration(const Vector& X, const Vector& u);
   std::string description() const;
 
  private:
@@ -84,6 +105,14 @@ class LinearSolver {
   std::shared_ptr<DirectMumps> mumps_;  ///< type mumps; prec_ is then its factors' inverse
   double reuse_rate_;
   double fresh_rate_ = 0;  ///< Krylov iterations per decade of a fresh preconditioner
+  std::string null_space_, positions_type_;  ///< multigrid near null space and its positions
+  bool zero_eliminated_ = false;             ///< modes zero at eliminated (decoupled) dofs
+  bool refresh_ = false;                     ///< multigrid reuse = refresh (if muelu)
+  bool refreshable_ = false;                 ///< refresh_ and the preconditioner is muelu
+  bool auto_ = false;                        ///< preconditioner = auto: chosen by size
+  long long auto_dofs_ = 0;                  ///< auto: muelu from this many equations
+  bool stale_ = false;                       ///< prec_ is for an earlier structure: refresh
+  Teuchos::RCP<Vector> positions_;           ///< node positions for the next multigrid build
 
   SolveStats checked_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol);
   int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
@@ -91,9 +120,16 @@ class LinearSolver {
   Teuchos::RCP<Teuchos::ParameterList> belos_parameters(double tol) const;
   void mumps_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, SolveStats& st,
                    std::string& message);
+  /// Builds (level 2) or refreshes (level 1) the preconditioner for A.
+  void setup_preconditioner(const Teuchos::RCP<Matrix>& A, int level);
   void build_preconditioner(const Teuchos::RCP<Matrix>& A,
                             std::vector<std::string>* unused = nullptr);
+  Teuchos::RCP<Operator> make_muelu_with_modes(const Teuchos::RCP<Matrix>& A) const;
+  /// preconditioner = auto: muelu for A of at least auto_dofs_ rows, else ilu.
+  void choose_preconditioner(const Teuchos::RCP<Matrix>& A);
   void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);
+  Teuchos::RCP<Matrix> check_preconditioner(const Teuchos::RCP<const Comm>& comm,
+                                            const std::string& where, const std::string& type);
 };
 
 }  // namespace emc::linalg

@@ -67,6 +67,7 @@ class Newton {
   NewtonOptions opt_;
   Teuchos::RCP<FEMatrix> A_;  ///< built once on the FE graph, refilled every iteration
   Teuchos::RCP<Vector> g_;
+  Teuchos::RCP<Vector> X_;  ///< reference positions, if the solver builds from positions
   NewtonResult last_;
   double contraction_ = 0;  ///< r_1 / r_0^2 of the last solve that had two iterates
   linalg::ConstraintHooks* hooks_ = nullptr;

@@ -139,7 +139,7 @@ TEST_F(InputTest, DefaultsAreFilled) {
   EXPECT_EQ(newton.get<int>("max iterations"), 25);
   const auto& linear = p.sublist("Solver").sublist("Linear");
   EXPECT_EQ(linear.get<std::string>("type"), "gmres");
-  EXPECT_EQ(linear.get<std::string>("preconditioner"), "ilu");
+  EXPECT_EQ(linear.get<std::string>("preconditioner"), "auto");
   EXPECT_EQ(linear.get<double>("tolerance"), 1e-10);
   EXPECT_EQ(linear.get<int>("max iterations"), 1000);
   EXPECT_EQ(linear.get<bool>("reuse preconditioner"), true);
