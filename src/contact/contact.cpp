@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <set>
@@ -135,6 +136,36 @@ void Contact::check_initial_penetration(const std::vector<double>& x,
                   count == 1 ? "s" : "", -deepest, -deepest / pr.edge);
     throw InputError(buf);
   }
+  for (const Pair& pr : pairs_)
+    if (pr.rigid_master) check_facing(pr, x, file);
+}
+
+// docs/THEORY.md §6.6: a rigid surface whose facets turn their back to the slave body (its
+// centroid behind the facet it projects into, at any depth) can never be touched.
+void Contact::check_facing(const Pair& pr, const std::vector<double>& x,
+                           const std::string& file) const {
+  double c[3] = {0, 0, 0};
+  for (int s : pr.slaves)
+    for (int i = 0; i < 3; ++i) c[i] += x[3 * s + i] / pr.slaves.size();
+  double nearest = 1e300, gap_nearest = 0;
+  for (const auto& f : pr.facets) {
+    double xm[3][3], xi[2], gap;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) xm[k][i] = x[3 * f[k] + i];
+    if (!kernels::facet_cpp(c, xm, xi, gap) || kernels::facet_outside(xi) > 0) continue;
+    if (std::fabs(gap) < nearest) {
+      nearest = std::fabs(gap);
+      gap_nearest = gap;
+    }
+  }
+  if (!(nearest < 1e300) || gap_nearest >= 0) return;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
+                "centroid %.3g behind the facet it projects into); a master's facet normals must "
+                "face the slave (a rigid plane's 'axis' points toward the slave)",
+                file.c_str(), pr.name.c_str(), -gap_nearest);
+  throw InputError(buf);
 }
 
 std::vector<double> Contact::normal_forces(const Vector& g, const std::vector<double>& x0,

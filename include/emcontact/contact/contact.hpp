@@ -123,6 +123,7 @@ class Contact {
   int global_count(int local) const;
 
  private:
+  void check_facing(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
   const fem::Discretization& disc_;
   std::vector<Pair> pairs_;
   std::vector<std::vector<int>> my_slaves_;  ///< per pair: the slave nodes this rank owns
