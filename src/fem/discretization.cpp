@@ -1,7 +1,6 @@
 #include "emcontact/fem/discretization.hpp"
 
 #include <Kokkos_DualView.hpp>
-
 #include <algorithm>
 
 #include "emcontact/error.hpp"
@@ -143,6 +142,8 @@ void Discretization::to_overlap(const Vector& owned, Vector& overlap) const {
   overlap.doImport(owned, *importer_, Tpetra::INSERT);
 }
 
-RCP<Vector> Discretization::new_overlap_vector() const { return rcp(new Vector(overlap_)); }
+RCP<Vector> Discretization::new_overlap_vector() const {
+  return rcp(new Vector(overlap_));
+}
 
 }  // namespace emc::fem

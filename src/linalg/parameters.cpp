@@ -39,7 +39,8 @@ void set_linear(Teuchos::ParameterList& pl) {
               "preconditioner while they work, see factorisation reuse rate)"}));
   pl.set(
       "preconditioner", std::string("auto"),
-      "Preconditioner of the iterative solvers (ignored by klu2 and mumps); auto: the faster of ilu and "
+      "Preconditioner of the iterative solvers (ignored by klu2 and mumps); auto: the faster of "
+      "ilu and "
       "muelu for the system's size (Solver/Linear/multigrid from equations).",
       string_choice(
           "preconditioner", {"auto", "ilu", "schwarz", "muelu", "none"},

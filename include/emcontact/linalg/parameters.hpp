@@ -8,8 +8,8 @@ namespace emc::linalg {
 /// Valid parameters of `Solver`: sublist `Newton` (`relative tolerance`, `absolute tolerance`,
 /// `max iterations`) and sublist `Linear` (`type`: gmres | cg | klu2 | mumps, `preconditioner`:
 /// ilu | schwarz | muelu | none, `tolerance`, `max iterations`, `reuse preconditioner`,
-/// `factorisation reuse rate`, `residual check factor`, and the pass-through sublists `Belos`, `Ifpack2`, `MueLu` whose
-/// contents go unchanged to Trilinos).
+/// `factorisation reuse rate`, `residual check factor`, and the pass-through sublists `Belos`,
+/// `Ifpack2`, `MueLu` whose contents go unchanged to Trilinos).
 Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
 
 }  // namespace emc::linalg
