@@ -7,37 +7,15 @@
 #include <cmath>
 
 #include "emcontact/linalg/linear_solver.hpp"
+#include "stencil.hpp"
 
 using namespace emc;
+using emc::testing::relative_residual;
+using emc::testing::stencil;
 
 namespace {
 
 constexpr int kRows = 40;
-
-/// A non-symmetric convection-diffusion stencil (i-2 .. i+1), scaled by `s` off the diagonal.
-Teuchos::RCP<Matrix> stencil(const Teuchos::RCP<const Map>& map, double s) {
-  auto A = Teuchos::rcp(new Matrix(map, 4));
-  for (GO i = 0; i < kRows; ++i) {
-    std::vector<GO> cols;
-    std::vector<double> vals;
-    for (GO j = i - 2; j <= i + 1; ++j)
-      if (j >= 0 && j < kRows) {
-        cols.push_back(j);
-        vals.push_back(j == i ? 4.0 : s * (j < i ? -1.3 : -0.6) / double(i - j > 0 ? i - j : 1));
-      }
-    A->insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols),
-                          Teuchos::ArrayView<const double>(vals));
-  }
-  A->fillComplete();
-  return A;
-}
-
-double relative_residual(const Matrix& A, const Vector& x, const Vector& b) {
-  Vector r(b.getMap());
-  A.apply(x, r);
-  r.update(1.0, b, -1.0);
-  return r.norm2() / b.norm2();
-}
 
 }  // namespace
 

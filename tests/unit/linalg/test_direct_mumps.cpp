@@ -10,8 +10,11 @@
 #include "emcontact/linalg/direct_mumps.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 #include "emcontact/linalg/parameters.hpp"
+#include "stencil.hpp"
 
 using namespace emc;
+using emc::testing::relative_residual;
+using emc::testing::stencil;
 
 namespace {
 
@@ -25,32 +28,6 @@ Teuchos::RCP<const Map> cyclic_map(const Teuchos::RCP<const Comm>& comm) {
   return Teuchos::rcp(new Map(kRows, Teuchos::ArrayView<const GO>(mine), 0, comm));
 }
 
-/// A non-symmetric convection-diffusion stencil (columns i-2 .. i+1, and i+width when
-/// width > 1), off-diagonals scaled by s. Row sums of |off-diagonal| are at most
-/// 0.65 + 1.3 + 0.6 + 0.3 = 2.85 < 4: strictly diagonally dominant, so
-/// ||A^-1||_inf <= 1 / (4 - 2.85) and cond_inf(A) <= 6.85 / 1.15 < 6.
-Teuchos::RCP<Matrix> stencil(const Teuchos::RCP<const Map>& map, double s, GO width = 1) {
-  auto A = Teuchos::rcp(new Matrix(map, 5));
-  for (LO l = 0; l < static_cast<LO>(map->getNodeNumElements()); ++l) {
-    const GO i = map->getGlobalElement(l);
-    std::vector<GO> cols;
-    std::vector<double> vals;
-    for (GO j = i - 2; j <= i + 1; ++j)
-      if (j >= 0 && j < kRows) {
-        cols.push_back(j);
-        vals.push_back(j == i ? 4.0 : s * (j < i ? -1.3 : -0.6) / double(i - j > 0 ? i - j : 1));
-      }
-    if (width > 1 && i + width < kRows) {
-      cols.push_back(i + width);
-      vals.push_back(0.3 * s);
-    }
-    A->insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols),
-                          Teuchos::ArrayView<const double>(vals));
-  }
-  A->fillComplete();
-  return A;
-}
-
 /// The same graph object with its values scaled by (1 + eps sin(k)), entry k.
 Teuchos::RCP<Matrix> perturbed(const Matrix& A, double eps) {
   const auto v1 = A.getLocalMatrixDevice().values;
@@ -62,13 +39,6 @@ Teuchos::RCP<Matrix> perturbed(const Matrix& A, double eps) {
   auto B = Teuchos::rcp(new Matrix(A.getCrsGraph(), v2));
   B->fillComplete(A.getDomainMap(), A.getRangeMap());
   return B;
-}
-
-double relative_residual(const Matrix& A, const Vector& x, const Vector& b) {
-  Vector r(b.getMap());
-  A.apply(x, r);
-  r.update(1.0, b, -1.0);
-  return r.norm2() / b.norm2();
 }
 
 // A backward-stable LU leaves ||b - A x|| / ||b|| <= c n eps cond(A) with cond < 6 (above):
