@@ -164,38 +164,32 @@ b = bytearray(open(p, 'rb').read()); b[pos] ^= 0x5a; open(p, 'wb').write(bytes(b
   echo "$accepted accepted (identical), $refused refused"
 }
 
-hostile_checkpoint_nan_time_refused() {
+# A checkpoint of the good input written every step, with scalar k (0: step, 1: t) of its
+# step-2 record (step 2, t 0.02, dt 0.01) replaced by NaN in the file's bytes.
+emc_nan_checkpoint_scalar() {
   emc_good_input in.xml
   "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
-  python3 - <<'PY'
-import struct
+  python3 - "$1" <<'PY'
+import struct, sys
+k = int(sys.argv[1])
 p = "ck/checkpoint.h5"
 b = bytearray(open(p, "rb").read())
-# the scalars: step 2, t 0.02, dt 0.01: t becomes NaN
-key = struct.pack("<ddd", 2.0, 0.02, 0.01)
-i = b.find(key)
+i = b.find(struct.pack("<ddd", 2.0, 0.02, 0.01))
 assert i >= 0
-b[i + 8:i + 16] = struct.pack("<d", float("nan"))
+b[i + 8 * k:i + 8 * k + 8] = struct.pack("<d", float("nan"))
 open(p, "wb").write(bytes(b))
 PY
+}
+
+hostile_checkpoint_nan_time_refused() {
+  emc_nan_checkpoint_scalar 1
   expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.05 --output ck --restart ck/checkpoint.h5
   expect_err "checkpoint.h5: "
   expect_short_err 1
 }
 
 hostile_checkpoint_nan_step_printed_as_number() {
-  emc_good_input in.xml
-  "$EMC" in.xml --set "Output/checkpoint every=1" --output ck >ck.log 2>&1
-  python3 - <<'PY'
-import struct
-p = "ck/checkpoint.h5"
-b = bytearray(open(p, "rb").read())
-key = struct.pack("<ddd", 2.0, 0.02, 0.01)
-i = b.find(key)
-assert i >= 0
-b[i:i + 8] = struct.pack("<d", float("nan"))
-open(p, "wb").write(bytes(b))
-PY
+  emc_nan_checkpoint_scalar 0
   expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.05 --output ck --restart ck/checkpoint.h5
   expect_err "step .*nan"
   if grep -q -- "-9223372036854775808" last.err; then echo "NaN step printed as an integer"; return 1; fi
