@@ -45,12 +45,12 @@ void Contact::close_stick(const std::vector<Active>& active, Vector& u1) const {
 // §7.4: W_c = sum_e F_e . ((x_{s,n+1} - x_{s,n}) - N (x_{m,n+1} - x_{m,n})) over the active
 // entries of closing pairs, and p: +w_e n_e on the slave, -w_e N'_i n_e on its free master
 // nodes, w_e = max(F_e . n_e, 0), n_e and N' the facet's normal and the slave's CPP at t_{n+1}.
-double Contact::closure_work(const Vector& g, const std::vector<double>& x0,
-                             const std::vector<double>& x1, const std::vector<Active>& active,
-                             Vector& p) const {
+ClosureWork Contact::closure_work(const Vector& g, const std::vector<double>& x0,
+                                  const std::vector<double>& x1, const std::vector<Active>& active,
+                                  Vector& p) const {
   const auto& m = disc_.model();
   const auto F = transmitted_forces(g, gather(active));
-  double work = 0;
+  double sums[2] = {0, 0};   // W_c and its round-off
   std::vector<double> send;  // (dof, value) pairs of p
   for (const auto& a : active) {
     const Pair& pr = pairs_[a.pair];
@@ -64,8 +64,12 @@ double Contact::closure_work(const Vector& g, const std::vector<double>& x0,
     for (int c = 0; c < 3; ++c) {
       double rel = x1[3 * a.slave + c] - x0[3 * a.slave + c];
       for (int i = 0; i < 3; ++i) rel -= N[i] * (xm1[i][c] - xm0[i][c]);
-      work += Fe[c] * rel;
+      sums[0] += Fe[c] * rel;
     }
+    // what closing a gap at the round-off of the coordinates moves: W_c below the sum of these
+    // is no energy to give back (nodes deeper keep their gap, §7.2)
+    sums[1] += (std::fabs(Fe[0]) + std::fabs(Fe[1]) + std::fabs(Fe[2])) *
+               gap_roundoff(pr, &x1[3 * a.slave]);
     double xi1[2], gap;
     if (!kernels::facet_cpp(&x1[3 * a.slave], xm1, xi1, gap)) continue;
     const kernels::Facet f1 = kernels::facet(xm1);
@@ -88,8 +92,11 @@ double Contact::closure_work(const Vector& g, const std::vector<double>& x0,
     const LO l = map.getLocalElement(static_cast<GO>(all[k]));
     if (l != Tpetra::Details::OrdinalTraits<LO>::invalid()) pv(l, 0) += all[k + 1];
   }
-  double total = 0;
-  Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 1, &work, &total);
+  ClosureWork total;
+  double all_sums[2];
+  Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 2, sums, all_sums);
+  total.work = all_sums[0];
+  total.roundoff = all_sums[1];
   return total;
 }
 

@@ -75,38 +75,37 @@ std::vector<Active> Contact::detect(const std::vector<double>& x0, const std::ve
     const EntryRule rule = entry_rule(pr);
     const int ns = static_cast<int>(mine.size());
     std::vector<Active> hit(ns);
-    Kokkos::parallel_for("emcontact::contact::detect",
-                         Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, ns),
-                         [&, p](const int k) {
-                           const int s = mine[k];
-                           if (busy.count(s)) return;
-                           double n_s[3];
-                           slave_normal(pr, s, x1, n_s);
-                           const Hit h1 = entered_facet(grid1, pr, x0, x1, s, n_s, rule);
-                           if (h1.facet < 0) return;
-                           // xf: the facet where xi is taken, at t_n (stick) or at n+1/2
-                           // (frictionless)
-                           double xf[3][3], y[3];
-                           const bool mid = pr.kind == Kind::frictionless;
-                           auto at = [&](int n, int i) {
-                             return mid ? 0.5 * (x0[3 * n + i] + x1[3 * n + i]) : x0[3 * n + i];
-                           };
-                           for (int i = 0; i < 3; ++i) {
-                             y[i] = at(s, i);
-                             for (int a = 0; a < 3; ++a) xf[a][i] = at(pr.facets[h1.facet][a], i);
-                           }
-                           const kernels::FacetMetric m = kernels::facet_metric(xf);
-                           double xi[2], gap;
-                           if (!kernels::facet_cpp(y, xf, m, xi, gap)) return;
-                           // docs/THEORY.md §7.2: a closing stick node keeps its CPP in the
-                           // edge extension (closing to a clamped xi drags it along the facet)
-                           if (!(pr.close_gap && pr.kind == Kind::full_stick))
-                             kernels::facet_clamp(m, xi);
-                           hit[k] = Active{s, static_cast<int>(p), h1.facet, {xi[0], xi[1]}, false};
-                           // docs/THEORY.md §7.2: a node already behind the facet at t_n keeps
-                           // its gap (closing it would push it out: energy from nowhere)
-                           hit[k].keep_gap = gap_at(x0, s, pr.facets[h1.facet]) < -rule.round;
-                         });
+    Kokkos::parallel_for(
+        "emcontact::contact::detect", Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, ns),
+        [&, p](const int k) {
+          const int s = mine[k];
+          if (busy.count(s)) return;
+          double n_s[3];
+          slave_normal(pr, s, x1, n_s);
+          const Hit h1 = entered_facet(grid1, pr, x0, x1, s, n_s, rule);
+          if (h1.facet < 0) return;
+          // xf: the facet where xi is taken, at t_n (stick) or at n+1/2
+          // (frictionless)
+          double xf[3][3], y[3];
+          const bool mid = pr.kind == Kind::frictionless;
+          auto at = [&](int n, int i) {
+            return mid ? 0.5 * (x0[3 * n + i] + x1[3 * n + i]) : x0[3 * n + i];
+          };
+          for (int i = 0; i < 3; ++i) {
+            y[i] = at(s, i);
+            for (int a = 0; a < 3; ++a) xf[a][i] = at(pr.facets[h1.facet][a], i);
+          }
+          const kernels::FacetMetric m = kernels::facet_metric(xf);
+          double xi[2], gap;
+          if (!kernels::facet_cpp(y, xf, m, xi, gap)) return;
+          // docs/THEORY.md §7.2: a closing stick node keeps its CPP in the
+          // edge extension (closing to a clamped xi drags it along the facet)
+          if (!(pr.close_gap && pr.kind == Kind::full_stick)) kernels::facet_clamp(m, xi);
+          hit[k] = Active{s, static_cast<int>(p), h1.facet, {xi[0], xi[1]}, false};
+          // docs/THEORY.md §7.2: a node already behind the facet at t_n keeps
+          // its gap (closing it would push it out: energy from nowhere)
+          hit[k].keep_gap = gap_at(x0, s, pr.facets[h1.facet]) < -gap_roundoff(pr, &x0[3 * s]);
+        });
     for (const auto& a : hit)
       if (a.slave >= 0) {
         found.push_back(a);
@@ -404,7 +403,8 @@ std::vector<std::pair<GO, double>> Contact::dummy_values(const Matrix& A,
 void Contact::mark_kept_gaps(std::vector<Active>& active, const std::vector<double>& x1) const {
   for (auto& a : active) {
     const Pair& pr = pairs_[a.pair];
-    if (pr.close_gap) a.keep_gap = gap_at(x1, a.slave, pr.facets[a.facet]) < -entry_rule(pr).round;
+    if (pr.close_gap)
+      a.keep_gap = gap_at(x1, a.slave, pr.facets[a.facet]) < -gap_roundoff(pr, &x1[3 * a.slave]);
   }
 }
 

@@ -72,8 +72,10 @@ EnergyRestoration::EnergyRestoration(const fem::Discretization& disc, const std:
     inv(i, 0) = f(i, 0) > 0 && l(i, 0) > 0 ? 1.0 / l(i, 0) : 1.0;
 }
 
-Restoration EnergyRestoration::restore(const Vector& p, double D, Vector& V) const {
+Restoration EnergyRestoration::restore(const Vector& p, double D, double roundoff,
+                                       Vector& V) const {
   Restoration r;
+  if (std::fabs(D) <= roundoff) return r;
   const auto map = disc_.owned_map();
   Vector pf(map), dv(map);
   pf.elementWiseMultiply(1.0, *free_, p, 0.0);

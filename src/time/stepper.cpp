@@ -141,17 +141,18 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
 // (or takes the energy it gave); false when no impulse along p can (the step is cut).
 bool Stepper::restore_energy(Vector& V1, StepReport& rep) {
   Teuchos::TimeMonitor tm(contact_timer());
-  const Restoration r = restoration_->restore(*closure_p_, -closure_work_, V1);
+  const double D = -closure_work_.work;
+  const Restoration r = restoration_->restore(*closure_p_, D, closure_work_.roundoff, V1);
   if (!r.ok) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
                   "the gap closure gave %.3e of energy that no compressive velocity update "
                   "along the contact normals can take back",
-                  closure_work_);
+                  closure_work_.work);
     rep.last_failure = buf;
     return false;
   }
-  rep.closure_energy += -closure_work_;
+  rep.closure_energy += r.gamma != 0 ? D : 0.0;
   return true;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // The active set of contact (ALGORITHM.md §4, §6) and the rows it adds to the elimination
 // operator P (§3). Each rank handles the slave nodes it owns; positions are replicated.
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -35,6 +38,19 @@ struct StepContactStats {
   int reactivated = 0;              ///< nodes released and activated again within the step (kept)
   double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active nodes (global)
   double normal_force_min = 0;      ///< smallest f_N of the nodes active at the accepted solve
+};
+
+/// docs/THEORY.md §7.2: the round-off of a gap g_N of a slave node at x on a facet of pair p
+/// (64 eps of the coordinates' and the facet's size): closing a gap below it moves nothing.
+inline double gap_roundoff(const Pair& p, const double x[3]) {
+  const double xmax = std::max({std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])});
+  return 64 * std::numeric_limits<double>::epsilon() * (xmax + p.edge);
+}
+
+/// docs/THEORY.md §7.4: the contact work of a step's closure and its round-off (global).
+struct ClosureWork {
+  double work = 0;      ///< W_c
+  double roundoff = 0;  ///< |W_c| below this is round-off: nothing to give back
 };
 
 class Contact {
@@ -103,8 +119,9 @@ class Contact {
   /// entries did over the step (global; g = the contactless residual at the solution) and
   /// the impulse direction p (owned dofs) that gives energy back along the contact normals
   /// (collective).
-  double closure_work(const Vector& g, const std::vector<double>& x0, const std::vector<double>& x1,
-                      const std::vector<Active>& active, Vector& p) const;
+  ClosureWork closure_work(const Vector& g, const std::vector<double>& x0,
+                           const std::vector<double>& x1, const std::vector<Active>& active,
+                           Vector& p) const;
   /// docs/THEORY.md §7.2: at the end of a step, entries of closing pairs behind their facet at
   /// x1 keep their gap in the next step, the others are closed.
   void mark_kept_gaps(std::vector<Active>& active, const std::vector<double>& x1) const;

@@ -22,8 +22,9 @@ class EnergyRestoration {
  public:
   /// `fixed`: my owned Dirichlet dofs (their velocity never changes).
   EnergyRestoration(const fem::Discretization& disc, const std::vector<GO>& fixed);
-  /// Adds gamma M^-1 p to V so that the kinetic energy rises by D (collective). p = 0: nothing.
-  Restoration restore(const Vector& p, double D, Vector& V) const;
+  /// Adds gamma M^-1 p to V so that the kinetic energy rises by D (collective). Nothing when
+  /// p = 0 or |D| <= roundoff (a closure of gaps at round-off: bodies at rest on each other).
+  Restoration restore(const Vector& p, double D, double roundoff, Vector& V) const;
 
  private:
   const fem::Discretization& disc_;

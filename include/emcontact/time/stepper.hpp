@@ -70,7 +70,7 @@ class Stepper {
   std::unique_ptr<contact::ActiveConstraints> constraints_;
   std::unique_ptr<EnergyRestoration> restoration_;  ///< with `close gap` pairs only
   Teuchos::RCP<Vector> closure_p_;                  ///< the step's impulse direction (§7.4)
-  double closure_work_ = 0;                         ///< the step's contact work W_c (§7.4)
+  contact::ClosureWork closure_work_;               ///< the step's contact work W_c (§7.4)
 
   void apply(std::vector<contact::Active>& active);
   void check_step_size(double h) const;
