@@ -4,6 +4,8 @@
 // closest-point projection (CPP) by the 2x2 normal equations, gap g_N = (y - x(xi)) . n.
 #include <Kokkos_Core.hpp>
 
+#include "kernels/math.hpp"
+
 namespace emc::kernels {
 
 struct Facet {
@@ -20,7 +22,7 @@ KOKKOS_INLINE_FUNCTION Facet facet(const double xm[3][3]) {
   }
   const double c[3] = {f.t1[1] * f.t2[2] - f.t1[2] * f.t2[1], f.t1[2] * f.t2[0] - f.t1[0] * f.t2[2],
                        f.t1[0] * f.t2[1] - f.t1[1] * f.t2[0]};
-  f.area2 = Kokkos::Experimental::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  f.area2 = kernels::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   for (int i = 0; i < 3; ++i) f.n[i] = f.area2 > 0 ? c[i] / f.area2 : 0.0;
   return f;
 }

@@ -13,9 +13,9 @@
 // index list (s; m1, m2, m3) places them. Dof order inside the blocks: master column/row 3 i + c
 // is component c of facet node m_{i+1}; slave q column/row k is dxi (k = 0) or deta (k = 1).
 #include <Kokkos_Core.hpp>
-#include <Kokkos_NumericTraits.hpp>
 
 #include "kernels/facet.hpp"
+#include "kernels/math.hpp"
 
 namespace emc::kernels {
 
@@ -230,7 +230,7 @@ KOKKOS_INLINE_FUNCTION double frictionless_project(const double xs0[3], double x
     for (int i = 0; i < 3; ++i) xmh[i][r] = 0.5 * (xm0[i][r] + xm1[i][r]);
   }
   double xi_new[2], gap;
-  if (!facet_cpp(xsh, xmh, xi_new, gap)) return Kokkos::Experimental::infinity<double>::value;
+  if (!facet_cpp(xsh, xmh, xi_new, gap)) return kernels::infinity();
   const Facet f = facet(xmh);
   double dgN = 0;
   if (close) {  // phi / (n_{n+1/2} . n_{n+1}), phi = g_N at n+1 (independent of xi)
@@ -240,7 +240,7 @@ KOKKOS_INLINE_FUNCTION double frictionless_project(const double xs0[3], double x
       phi += (xs1[c] - xm1[0][c]) * f1.n[c];
       d += f.n[c] * f1.n[c];
     }
-    if (!(f1.area2 > 0) || !(d > 0)) return Kokkos::Experimental::infinity<double>::value;
+    if (!(f1.area2 > 0) || !(d > 0)) return kernels::infinity();
     dgN = phi / d;
   }
   xi[0] = xi_new[0];

@@ -3,6 +3,7 @@
 // (2/dt^2) M + K (ALGORITHM.md §1):
 //   g_A = (2/dt^2) M_AB (u_{B,n+1} - u_{B,n}) - (2/dt) M_AB V_{B,n} + f_int_A - f_ext_A.
 #include "kernels/em_tet4.hpp"
+#include "kernels/math.hpp"
 #include "kernels/mass_tet4.hpp"
 
 namespace emc::kernels {
@@ -32,21 +33,21 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
   const double c2 = 2.0 / (dt * dt), c1 = 2.0 / dt;
   double gnorm[4], ug = 0;
   for (int a = 0; a < 4; ++a) {
-    gnorm[a] = Kokkos::Experimental::sqrt(G[a][0] * G[a][0] + G[a][1] * G[a][1] + G[a][2] * G[a][2]);
-    const double un = Kokkos::Experimental::sqrt(s.u1[a][0] * s.u1[a][0] + s.u1[a][1] * s.u1[a][1] +
+    gnorm[a] = kernels::sqrt(G[a][0] * G[a][0] + G[a][1] * G[a][1] + G[a][2] * G[a][2]);
+    const double un = kernels::sqrt(s.u1[a][0] * s.u1[a][0] + s.u1[a][1] * s.u1[a][1] +
                                                  s.u1[a][2] * s.u1[a][2]);
     ug += un * gnorm[a];
   }
-  const double stiff = 1e-3 * Ve * (Kokkos::Experimental::fabs(m.lambda) + 2 * m.mu) * ug;
+  const double stiff = 1e-3 * Ve * (kernels::fabs(m.lambda) + 2 * m.mu) * ug;
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) {
       const double fext = rho * Ve * grav[i] / 4.0;
       const double fint = r[3 * a + i];
       r[3 * a + i] = c2 * Mdu[a][i] - c1 * MV[a][i] + fint - fext;
       if (scale)
-        scale[3 * a + i] = Kokkos::Experimental::fabs(c2 * Mdu[a][i]) +
-                           Kokkos::Experimental::fabs(c1 * MV[a][i]) +
-                           Kokkos::Experimental::fabs(fint) + Kokkos::Experimental::fabs(fext) +
+        scale[3 * a + i] = kernels::fabs(c2 * Mdu[a][i]) +
+                           kernels::fabs(c1 * MV[a][i]) +
+                           kernels::fabs(fint) + kernels::fabs(fext) +
                            stiff * gnorm[a];
     }
   if (A == nullptr) return;

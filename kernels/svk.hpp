@@ -3,6 +3,8 @@
 // S(E) = lambda tr(E) I + 2 mu E, W = lambda/2 tr(E)^2 + mu E:E (per unit reference volume).
 #include <Kokkos_Core.hpp>
 
+#include "kernels/math.hpp"
+
 namespace emc::kernels {
 
 struct Lame {
@@ -54,7 +56,7 @@ KOKKOS_INLINE_FUNCTION double von_mises(const double F[3][3], const double S[3][
     }
   const double a = s[0][0] - s[1][1], b = s[1][1] - s[2][2], c = s[2][2] - s[0][0];
   const double sh = s[0][1] * s[0][1] + s[1][2] * s[1][2] + s[2][0] * s[2][0];
-  return Kokkos::Experimental::sqrt(0.5 * (a * a + b * b + c * c) + 3 * sh);
+  return kernels::sqrt(0.5 * (a * a + b * b + c * c) + 3 * sh);
 }
 
 }  // namespace emc::kernels

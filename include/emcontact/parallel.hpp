@@ -27,3 +27,11 @@ void broadcast_vector(const Comm& comm, std::vector<T>& v) {
 }
 
 }  // namespace emc
+
+namespace emc {
+
+/// Sends sends[r] to rank r and returns what every rank sent to me, in rank order
+/// (MPI_Alltoall of the counts, then MPI_Alltoallv).
+std::vector<int> exchange_ints(const Comm& comm, const std::vector<std::vector<int>>& sends);
+
+}  // namespace emc

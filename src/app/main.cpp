@@ -34,6 +34,12 @@ int main(int argc, char** argv) {
           s.steps ? s.stepping_seconds / s.steps : 0.0,
           s.steps ? double(s.newton_iterations) / s.steps : 0.0, wall.totalElapsedTime(true),
           s.max_energy_error, s.output_dir.c_str());
+      if (s.contact_imports > 0)
+        std::printf(
+            "emcontact: contact nodes per rank %lld (%lld owned by other ranks), %lld bytes "
+            "received per import of their positions, %lld imports (the largest over the "
+            "ranks)\n",
+            s.contact_nodes, s.contact_remote, s.contact_bytes, s.contact_imports);
     }
     Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, false);
     return 0;

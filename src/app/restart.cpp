@@ -129,9 +129,10 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   }
   // docs/THEORY.md §7.2: which nodes keep their gap follows from u_n and the active set, as at
   // the end of the step that wrote the checkpoint
-  if (sim.contact && sim.contact->closes_gaps())
-    sim.contact->mark_kept_gaps(s.active,
-                                contact::positions(sim.model, sim.contact->replicate(*s.u)));
+  if (sim.contact && sim.contact->closes_gaps()) {
+    sim.contact->select(*s.u, *s.u, sim.contact->gather(s.active));
+    sim.contact->mark_kept_gaps(s.active, sim.contact->positions(*s.u));
+  }
 }
 
 std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path,

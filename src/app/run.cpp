@@ -199,7 +199,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->contact =
       std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
   if (opt.restart.empty())
-    sim->contact->check_initial_penetration(contact::positions(sim->model, {}), opt.input);
+    sim->contact->check_initial_penetration(opt.input);
   check_contact_scales(sim->model, sim->contact->pairs(), opt.input);
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
   sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,
@@ -312,6 +312,15 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   if (root && out.get<bool>("plot")) plot_monitors(sum.output_dir);
   sum.steps = state.step;
   sum.time = state.t;
+  if (sim->contact) {  // docs/THEORY.md §8: what each rank holds and receives of contact
+    const auto& t = sim->contact->nodes().traffic();
+    long long mine[4] = {t.nodes, t.remote, 8LL * 3 * t.remote, t.imports}, most[4];
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 4, mine, most);
+    sum.contact_nodes = most[0];
+    sum.contact_remote = most[1];
+    sum.contact_bytes = most[2];
+    sum.contact_imports = most[3];
+  }
   comm->barrier();
   sum.stepping_seconds = clock.totalElapsedTime(true) - sum.setup_seconds;
   return sum;

@@ -18,3 +18,24 @@ std::vector<double> allgather(const Comm& comm, const std::vector<double>& mine)
 }
 
 }  // namespace emc
+
+namespace emc {
+
+std::vector<int> exchange_ints(const Comm& comm, const std::vector<std::vector<int>>& sends) {
+  const auto& mpi = dynamic_cast<const Teuchos::MpiComm<int>&>(comm);
+  const int np = comm.getSize();
+  std::vector<int> scount(np), rcount(np), sdispl(np, 0), rdispl(np, 0), flat;
+  for (int p = 0; p < np; ++p) {
+    scount[p] = static_cast<int>(sends[p].size());
+    sdispl[p] = static_cast<int>(flat.size());
+    flat.insert(flat.end(), sends[p].begin(), sends[p].end());
+  }
+  MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, *mpi.getRawMpiComm());
+  for (int p = 1; p < np; ++p) rdispl[p] = rdispl[p - 1] + rcount[p - 1];
+  std::vector<int> got(rdispl[np - 1] + rcount[np - 1]);
+  MPI_Alltoallv(flat.data(), scount.data(), sdispl.data(), MPI_INT, got.data(), rcount.data(),
+                rdispl.data(), MPI_INT, *mpi.getRawMpiComm());
+  return got;
+}
+
+}  // namespace emc

@@ -214,8 +214,11 @@ void StructuredReduction::build(const Matrix& A) {
     c_ip_ = to_view("emc::structured::ip", cp);
     c_it_ = to_view("emc::structured::it", ct);
     c_pos_ = to_view("emc::structured::pos", cpos);
-    x_pos_ = to_view("emc::structured::x_pos", xp);
-    d_pos_ = to_view("emc::structured::d_pos", dp);
+    segments(cpos, c_order_, c_seg_);
+    std::vector<int> xdp = xp;  // X's entries, then D's: the order they are added in
+    xdp.insert(xdp.end(), dp.begin(), dp.end());
+    xd_pos_ = to_view("emc::structured::xd_pos", xdp);
+    segments(xdp, xd_order_, xd_seg_);
   });
 }
 
@@ -302,6 +305,22 @@ void StructuredReduction::find_positions(const Matrix& A, const std::vector<char
   B_->endAssembly();
 }
 
+// Groups the contributions by the value they add to: order lists them by position (stably: in
+// their own order within a position), seg the start of each position's run. A kernel over the
+// runs then adds each position's contributions in a fixed order, with no two threads on one
+// value: the same bits on any number of threads (docs/THEORY.md §8).
+void StructuredReduction::segments(const std::vector<int>& pos, Kokkos::View<int*, ExecSpace>& order,
+                                   Kokkos::View<int*, ExecSpace>& seg) {
+  std::vector<int> o(pos.size()), starts;
+  for (std::size_t k = 0; k < o.size(); ++k) o[k] = static_cast<int>(k);
+  std::stable_sort(o.begin(), o.end(), [&](int a, int b) { return pos[a] < pos[b]; });
+  for (std::size_t j = 0; j < o.size(); ++j)
+    if (j == 0 || pos[o[j]] != pos[o[j - 1]]) starts.push_back(static_cast<int>(j));
+  starts.push_back(static_cast<int>(o.size()));
+  order = to_view("emc::structured::order", o);
+  seg = to_view("emc::structured::seg", starts);
+}
+
 RCP<Matrix> StructuredReduction::apply(const Matrix& A) {
   key_.col_map = A.getColMap().get();
   key_.nnz = A.getNodeNumEntries();
@@ -317,23 +336,38 @@ RCP<Matrix> StructuredReduction::apply(const Matrix& A) {
   {
     const auto vB = B_->getLocalMatrixDevice().values;
     const auto plain = plain_pos_;
-    const auto a = c_a_, ip = c_ip_, it = c_it_, pos = c_pos_, xpos = x_pos_, dpos = d_pos_;
+    const auto a = c_a_, ip = c_ip_, it = c_it_, pos = c_pos_, xdpos = xd_pos_;
     const auto pw = p_w_, ptw = pt_w_, xv = x_v_, dv = d_v_;
+    const auto corder = c_order_, cseg = c_seg_, xdorder = xd_order_, xdseg = xd_seg_;
+    const int nx = static_cast<int>(x_v_.extent(0));
     Kokkos::parallel_for(  // distinct positions: no atomics
         "emcontact::linalg::structured_plain", Kokkos::RangePolicy<ExecSpace>(0, plain.extent(0)),
         KOKKOS_LAMBDA(const int e) {
           if (plain(e) >= 0) vB(plain(e)) += vA(e);
         });
-    Kokkos::parallel_for(
-        "emcontact::linalg::structured_ptap", Kokkos::RangePolicy<ExecSpace>(0, a.extent(0)),
-        KOKKOS_LAMBDA(const int k) {
-          Kokkos::atomic_add(&vB(pos(k)), pw(ip(k)) * vA(a(k)) * ptw(it(k)));
+    Kokkos::parallel_for(  // one run of contributions per value, in a fixed order
+        "emcontact::linalg::structured_ptap",
+        Kokkos::RangePolicy<ExecSpace>(0, cseg.extent(0) > 0 ? cseg.extent(0) - 1 : 0),
+        KOKKOS_LAMBDA(const int r) {
+          const int p = pos(corder(cseg(r)));
+          double v = vB(p);
+          for (int j = cseg(r); j < cseg(r + 1); ++j) {
+            const int k = corder(j);
+            v += pw(ip(k)) * vA(a(k)) * ptw(it(k));
+          }
+          vB(p) = v;
         });
     Kokkos::parallel_for(
-        "emcontact::linalg::structured_x_d", Kokkos::RangePolicy<ExecSpace>(0, 1),
-        KOKKOS_LAMBDA(const int) {
-          for (std::size_t k = 0; k < xpos.extent(0); ++k) vB(xpos(k)) += xv(k);
-          for (std::size_t k = 0; k < dpos.extent(0); ++k) vB(dpos(k)) += dv(k);
+        "emcontact::linalg::structured_x_d",
+        Kokkos::RangePolicy<ExecSpace>(0, xdseg.extent(0) > 0 ? xdseg.extent(0) - 1 : 0),
+        KOKKOS_LAMBDA(const int r) {
+          const int p = xdpos(xdorder(xdseg(r)));
+          double v = vB(p);
+          for (int j = xdseg(r); j < xdseg(r + 1); ++j) {
+            const int e = xdorder(j);
+            v += e < nx ? xv(e) : dv(e - nx);
+          }
+          vB(p) = v;
         });
   }
   B_->endAssembly();

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <set>
 
 #include "emcontact/error.hpp"
 #include "emcontact/time/timers.hpp"
@@ -25,8 +24,8 @@ Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Eli
       grow_after_(time.get<int>("grow after")) {
   if (s_.dt <= 0) s_.dt = dt_;
   if (contact_) {
-    constraints_ = std::make_unique<contact::ActiveConstraints>(*contact_, elim_, fixed_);
-    newton_.set_hooks(constraints_.get());
+    loop_ = std::make_unique<contact::ActiveSetLoop>(*contact_, elim_, fixed_);
+    newton_.set_hooks(loop_->hooks());
     if (contact_->closes_gaps()) {
       restoration_ = std::make_unique<EnergyRestoration>(newton_.disc(), fixed_);
       closure_p_ = Teuchos::rcp(new Vector(newton_.disc().owned_map()));
@@ -40,100 +39,52 @@ bool Stepper::finished() const {
   return s_.t >= end_ - 1e-9 * dt_;
 }
 
-// The active set's constraints for the next solve; a new P makes the preconditioner stale.
-void Stepper::apply(std::vector<contact::Active>& active) {
-  if (!contact_) return;
-  Teuchos::TimeMonitor tm(contact_timer());  // constraint rows and the new P (§2-§3)
-  if (constraints_->use(&active)) newton_.solver().matrix_changed();
+// §1: the start iterate must satisfy every constraint. With no active contact, the last step's
+// increment (its mid-point velocity, smooth also for the stiff modes that V_n flips every step)
+// scaled to h does (fixed dofs never move) and saves a Newton iteration in smooth motion; while
+// the last step needed more than 2 iterations (a body ringing after an impact) it costs one, so
+// u_n is used then, as with active contact.
+void Stepper::start_iterate(double h, bool no_contact, Vector& u1) const {
+  u1.assign(*s_.u);
+  if (s_.last_increment && s_.last_h > 0 && s_.last_iterations <= 2 && no_contact)
+    u1.update(h / s_.last_h, *s_.last_increment, 1.0);
 }
 
 // One step of size h with the active-set loop of ALGORITHM.md §6; false if Newton failed.
 bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   const Vector& u0 = *s_.u;
-  std::vector<contact::Active> trial = s_.active;
-  std::set<int> released, pinned;
-  rep.contact = contact::StepContactStats{};
-  std::vector<double> fN;
-  for (int rep_no = 0;; ++rep_no) {
-    apply(trial);
-    // §1: the start iterate must satisfy every constraint. With no active contact, the last
-    // step's increment (its mid-point velocity, smooth also for the stiff modes that V_n
-    // flips every step) scaled to h does (fixed dofs never move) and saves a Newton
-    // iteration in smooth motion; while the last step needed more than 2 iterations (a body
-    // ringing after an impact) it costs one, so u_n is used then, as with active contact.
-    u1.assign(u0);
-    if (s_.last_increment && s_.last_h > 0 && s_.last_iterations <= 2 &&
-        (!contact_ || contact_->global_count(static_cast<int>(trial.size())) == 0))
-      u1.update(h / s_.last_h, *s_.last_increment, 1.0);
+  auto newton = [&](bool empty) -> bool {
+    start_iterate(h, empty, u1);
     const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1);
     rep.newton_iterations += nr.iterations;
     rep.linear_iterations += nr.linear_iterations;
-    if (!nr.converged) {
-      rep.last_failure = nr.failure;
-      return false;
-    }
-    if (!contact_) return true;
-    Teuchos::TimeMonitor tm(contact_timer());
-    const auto x0 = contact::positions(contact_->disc_model(), contact_->replicate(u0));
-    const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
-    const auto fresh = contact_->detect(x0, x1, trial);
-    fN = contact_->normal_forces(newton_.last_residual(), x0, x1, trial);
-    std::vector<contact::Active> next;
-    int n_release = 0;
-    for (std::size_t k = 0; k < trial.size(); ++k) {
-      const int s = trial[k].slave;
-      // §6.4: tensile (or, frictionless, off its master by more than tol_f) -> release
-      if ((fN[k] < 0 || trial[k].off) && !pinned.count(s)) {
-        released.insert(s);
-        ++n_release;
-      } else {
-        next.push_back(trial[k]);
-      }
-    }
-    for (const auto& a : fresh) {
-      if (released.count(a.slave)) {  // released in this step and penetrating again: keep it
-        pinned.insert(a.slave);
-        ++rep.contact.reactivated;
-      }
-      next.push_back(a);
-    }
-    const int changes = contact_->global_count(static_cast<int>(fresh.size()) + n_release);
-    if (changes == 0) break;
-    std::sort(next.begin(), next.end());
-    trial = std::move(next);
-    ++rep.contact.resolves;
-    fN.clear();
-  }
-  // §6.5: accept; nodes still in tension (only pinned ones can be) leave for the next step
-  Teuchos::TimeMonitor tm(contact_timer());
-  std::vector<contact::Active> keep;
-  s_.normal_force.clear();
-  s_.contact_nodes.clear();
-  s_.contact_status.clear();
-  s_.contact_force.assign(fN.begin(), fN.end());
-  for (std::size_t k = 0; k < trial.size(); ++k) {
-    const bool stays = fN[k] >= 0 && !trial[k].off;
-    s_.contact_nodes.push_back(trial[k].slave);
-    s_.contact_status.push_back(stays ? 1 : 2);
-    if (stays) {
-      keep.push_back(trial[k]);
-      s_.normal_force.push_back(fN[k]);
-    }
-  }
-  const auto x1 = contact::positions(contact_->disc_model(), contact_->replicate(u1));
-  if (restoration_) {  // docs/THEORY.md §7.4: the work the closure made the contact forces do
-    const auto x0 = contact::positions(contact_->disc_model(), contact_->replicate(u0));
-    closure_work_ = contact_->closure_work(newton_.last_residual(), x0, x1, trial, *closure_p_);
-  }
-  if (restoration_) contact_->mark_kept_gaps(keep, x1);
-  rep.contact.active = contact_->global_count(static_cast<int>(trial.size()));
-  rep.contact.reactivated = contact_->global_count(rep.contact.reactivated);
-  contact_->gap_range(x1, trial, rep.contact.gap_min, rep.contact.gap_max);
-  double fmin = 0, gmin = 0;
-  for (double f : fN) fmin = std::min(fmin, f);  // every node active at the accepted solve
-  Teuchos::reduceAll(*contact_->disc_comm(), Teuchos::REDUCE_MIN, 1, &fmin, &gmin);
-  rep.contact.normal_force_min = gmin;
-  s_.active = std::move(keep);
+    if (!nr.converged) rep.last_failure = nr.failure;
+    return nr.converged;
+  };
+  if (!loop_) return newton(true);
+  // the prediction of u_{n+1} (the reach of the contact nodes, docs/THEORY.md §8)
+  u1.assign(u0);
+  if (s_.last_increment && s_.last_h > 0) u1.update(h / s_.last_h, *s_.last_increment, 1.0);
+  contact::SettledSet settled;
+  Teuchos::TimeMonitor tm(contact_timer());  // the loop's own work; Newton's is its own
+  const bool ok = loop_->solve(
+      u0, u1, s_.active,
+      [&](bool changed, bool empty) -> const Vector* {
+        if (changed) newton_.solver().matrix_changed();  // a new P: the preconditioner is stale
+        contact_timer().stop();
+        const bool converged = newton(empty);
+        contact_timer().start();
+        return converged ? &newton_.last_residual() : nullptr;
+      },
+      settled, restoration_ ? closure_p_.get() : nullptr);
+  if (!ok) return false;
+  rep.contact = settled.stats;
+  closure_work_ = settled.closure;
+  s_.active = std::move(settled.active);
+  s_.normal_force = std::move(settled.normal_force);
+  s_.contact_nodes = std::move(settled.nodes);
+  s_.contact_status = std::move(settled.status);
+  s_.contact_force = std::move(settled.force);
   return true;
 }
 

@@ -5,6 +5,7 @@
 
 #include "emcontact/app/simulation.hpp"
 #include "kernels/tet4.hpp"
+#include "support/replicate.hpp"
 
 namespace emc::testing {
 
@@ -12,7 +13,7 @@ namespace emc::testing {
 /// sum_AB M_AB V_B = sum_B (sum_A M_AB) V_B). Collective (replicates V).
 inline std::vector<std::array<double, 3>> body_momenta(emc::app::Simulation& sim) {
   const auto& m = sim.model;
-  const auto V = sim.contact->replicate(*sim.state.V);
+  const auto V = replicate(*sim.disc, *sim.state.V);
   std::vector<double> lumped(m.num_nodes(), 0.0);
   for (int e = 0; e < m.num_tets(); ++e) {
     double x[4][3];

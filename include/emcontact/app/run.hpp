@@ -29,6 +29,10 @@ struct Summary {
   std::string output_dir;
   long long tets = 0, nodes = 0;
   double setup_seconds = 0, stepping_seconds = 0;  ///< wall time before / in the time loop
+  /// docs/THEORY.md §8, the largest over the ranks at the last selection: contact nodes, those
+  /// owned by another rank, and the bytes a rank receives per import of their positions; the
+  /// number of imports per rank over the run (0 without contact).
+  long long contact_nodes = 0, contact_remote = 0, contact_bytes = 0, contact_imports = 0;
 };
 
 /// Runs the whole simulation on `comm`. Throws emc::Error (after writing what it had).

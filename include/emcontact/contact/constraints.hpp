@@ -1,10 +1,11 @@
 #pragma once
-// The constraints of the active contact set inside Newton (ALGORITHM.md §3-§5): the rows of P
-// for the active slaves, beta on their dummies (eq. 44, 59), and for frictionless slaves the
-// exact linearisation (Pt, X) and the update steps 2-3 after every Newton update.
+// The constraints of the active contact set inside Newton (ALGORITHM.md §3-§5): each law's rows
+// of P (and Pt, X for a law whose rows follow the iterate), beta on the dummies (eq. 44, 59),
+// and the law's projection of the start iterate and of every update.
 #include <vector>
 
 #include "emcontact/contact/contact.hpp"
+#include "emcontact/contact/law.hpp"
 #include "emcontact/linalg/elimination.hpp"
 
 namespace emc::contact {
@@ -17,6 +18,8 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   /// place). Rebuilds P when the set differs from the last one on any rank (collective);
   /// returns true if it did.
   bool use(std::vector<Active>* trial);
+  /// All ranks' entries of the trial set (chains).
+  const ActiveIndex& index() const { return index_; }
 
   void start(const Vector& u0, Vector& u1) override;
   void before_reduce(const Vector& u0, const Vector& u1, const Vector& g, const Matrix& A) override;
@@ -29,10 +32,12 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<Active>* trial_ = nullptr;
   std::vector<std::array<double, 4>> applied_;  ///< (slave, facet, xi) P was built for
   std::vector<GO> dummies_;
-  bool frictionless_ = false;   ///< any active frictionless slave on any rank
-  bool closing_stick_ = false;  ///< any active full-stick slave of a `close gap` pair
-  std::vector<double> x0_;      ///< positions at t_n (frictionless)
-  ActiveIndex index_;           ///< every rank's active entries (chains)
+  std::vector<const Law*> present_;  ///< laws with an entry on some rank
+  bool iterate_dependent_ = false;   ///< some present law's rows follow the iterate
+  Positions x0_;                     ///< contact nodes at t_n
+  ActiveIndex index_;                ///< every rank's active entries (chains)
+
+  LawState state(Positions x1) const;
 };
 
 }  // namespace emc::contact

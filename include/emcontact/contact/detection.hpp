@@ -1,11 +1,16 @@
 #pragma once
 // Which master facet an inactive slave node enters over a step (docs/THEORY.md §6.3), and the
-// slave nodes that already penetrate their master at t = 0 (refused before any step).
+// slave nodes that already penetrate their master at t = 0 (refused before any step). The rules
+// are device functions on a FacetGrid, facet connectivity facets(f, a) and positions x(n, i).
+#include <Kokkos_Core.hpp>
+#include <array>
 #include <string>
 #include <vector>
 
 #include "emcontact/contact/pairs.hpp"
 #include "emcontact/contact/search.hpp"
+#include "kernels/facet.hpp"
+#include "kernels/math.hpp"
 
 namespace emc::contact {
 
@@ -22,23 +27,95 @@ struct EntryRule {
 /// The rule for a pair: round-off 1e-12 of its activation depth, depth bound `max penetration`.
 EntryRule entry_rule(const Pair& p);
 
+namespace detail {
+
+KOKKOS_INLINE_FUNCTION double dot3(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// A candidate facet of entered_facet, with what orders candidates.
+struct Entry {
+  Hit hit;
+  bool crossing = false;  ///< g_N >= -round at t_n: the facet's plane is crossed in the step
+  double s = 0;           ///< the fraction of the step at which it is crossed
+  double outside = 0;     ///< barycentric, of the crossing point
+  bool extended = false;  ///< the crossing point lies in the edge extension only
+
+  KOKKOS_INLINE_FUNCTION bool before(const Entry& o) const {
+    if (crossing != o.crossing) return crossing;
+    if (extended != o.extended) return !extended;
+    if (s != o.s) return s < o.s;
+    if (outside != o.outside) return outside < o.outside;
+    return hit.facet < o.hit.facet;
+  }
+};
+
+}  // namespace detail
+
 /// The facet that slave node s enters over the step from x0 (t_n) to x1 (t_{n+1}), with its
-/// CPP and gap at t_{n+1} (hit.xi unclamped), or facet = -1. grid1 holds the pair's facets at
-/// x1 (margin >= rule.dmax); ns is the slave surface's outward normal at s at t_{n+1}.
-/// Candidates face the node, take it (and the point where it crosses their plane) within
-/// rule.edge, hold it at -dmax < g_N < -round at n+1 and see it approach (g_N decreasing). A
-/// facet crossed over the step (g_N >= -round at t_n) wins over one the node was already
-/// behind; then a facet crossed inside over one crossed in the edge extension only; then the
-/// earliest crossing, the least outside, the lowest id. A facet that takes the node only
-/// through the edge extension is refused when the node lies on another facing facet (inside
-/// it, 0 <= g_N <= edge times its size): the node passes over that facet's edge.
+/// CPP and gap at t_{n+1} (hit.xi unclamped), or facet = -1. grid1 holds the facets (facets(f, a)
+/// node indices into x0 and x1) at x1 (margin >= rule.dmax); ns is the slave surface's outward
+/// normal at s at t_{n+1}. Candidates face the node, take it (and the point where it crosses
+/// their plane) within rule.edge, hold it at -dmax < g_N < -round at n+1 and see it approach
+/// (g_N decreasing). A facet crossed over the step (g_N >= -round at t_n) wins over one the node
+/// was already behind; then a facet crossed inside over one crossed in the edge extension only;
+/// then the earliest crossing, the least outside, the lowest id. A facet that takes the node
+/// only through the edge extension is refused when the node lies on another facing facet
+/// (inside it, 0 <= g_N <= edge times its size): the node passes over that facet's edge.
+template <class Facets, class X>
+KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& facets, const X& x0,
+                                         const X& x1, int s, const double ns[3],
+                                         const EntryRule& rule) {
+  const double y1[3] = {x1(s, 0), x1(s, 1), x1(s, 2)}, y0[3] = {x0(s, 0), x0(s, 1), x0(s, 2)};
+  detail::Entry best;
+  bool any = false, covered = false;
+  grid1.for_each_candidate(y1, [&](const Hit& h1, double out1) {
+    const kernels::FacetMetric m = grid1.metric(h1.facet);
+    if (!(detail::dot3(m.f.n, ns) < -rule.facing) || out1 > rule.edge) return;
+    if (out1 <= rule.strict && h1.gap >= -rule.round &&
+        h1.gap <= rule.edge * kernels::sqrt(m.f.area2))
+      covered = true;
+    if (!(h1.gap < -rule.round && h1.gap > -rule.dmax)) return;
+    double xm0[3][3], xi0[2], g0;
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) xm0[a][i] = x0(facets(h1.facet, a), i);
+    if (!kernels::facet_cpp(y0, xm0, xi0, g0) || !(h1.gap < g0)) return;  // approaching
+    detail::Entry e;
+    e.hit = h1;
+    e.crossing = g0 >= -rule.round;
+    e.s = e.crossing ? g0 / (g0 - h1.gap) : 0.0;
+    // where the node crosses the facet's plane (flat facets, linear motion over the step)
+    const double xic[2] = {xi0[0] + e.s * (h1.xi[0] - xi0[0]), xi0[1] + e.s * (h1.xi[1] - xi0[1])};
+    const double outc = e.crossing ? kernels::facet_outside(xic) : out1;
+    if (outc > rule.edge) return;
+    e.outside = outc > 0 ? outc : 0.0;
+    e.extended = outc > rule.strict || out1 > rule.strict;
+    if (e.extended && !e.crossing) return;  // the extension is for entries over the edge only
+    if (!any || e.before(best)) best = e;
+    any = true;
+  });
+  if (!any || (best.extended && covered)) return Hit{};
+  best.hit.inside = true;
+  return best.hit;
+}
+
+/// The same on a pair's global facets and positions (3 per geometry node).
 Hit entered_facet(const FacetGrid& grid1, const Pair& p, const std::vector<double>& x0,
                   const std::vector<double>& x1, int s, const double ns[3], const EntryRule& rule);
 
 /// The facet a frictionless slave at y (mid-point configuration of grid) moves on to when it
 /// leaves its facet (§5 step 2): among the facets facing it (normal ns) whose CPP is inside,
 /// the smallest |g_N|, lowest id on ties; facet = -1 if none.
-Hit next_facet(const FacetGrid& grid, const double y[3], const double ns[3], const EntryRule& rule);
+KOKKOS_INLINE_FUNCTION Hit next_facet(const FacetGrid& grid, const double y[3],
+                                      const double ns[3], const EntryRule& rule) {
+  Hit best;
+  grid.for_each_candidate(y, [&](const Hit& h, double out) {
+    if (out > rule.strict || !(detail::dot3(grid.metric(h.facet).f.n, ns) < -rule.facing)) return;
+    if (best.facet < 0 || kernels::fabs(h.gap) < kernels::fabs(best.gap)) best = h;
+  });
+  best.inside = best.facet >= 0;
+  return best;
+}
 
 /// Slave nodes (of `nodes`) that penetrate the pair's master in configuration x: the closest
 /// facet whose CPP is inside (smallest |g_N|) has -dmax < g_N < -tol.

@@ -70,11 +70,15 @@ class StructuredReduction {
   std::vector<GO> x_rows_, x_cols_, d_rows_;
   // the contributions, found once per pattern: value += p_w(ip) * A(ea) * pt_w(it)
   Kokkos::View<int*, ExecSpace> c_a_, c_ip_, c_it_, c_pos_;
-  Kokkos::View<int*, ExecSpace> x_pos_, d_pos_;
+  Kokkos::View<int*, ExecSpace> xd_pos_;  ///< X's positions, then D's
+  /// per value of the result, the run of its contributions (segments)
+  Kokkos::View<int*, ExecSpace> c_order_, c_seg_, xd_order_, xd_seg_;
   Kokkos::View<int*, ExecSpace> plain_pos_;  ///< per entry of A: its position, or -1
   Teuchos::RCP<FEMatrix> B_;
   int builds_ = 0;
   void build(const Matrix& A);
+  static void segments(const std::vector<int>& pos, Kokkos::View<int*, ExecSpace>& order,
+                       Kokkos::View<int*, ExecSpace>& seg);
   std::vector<char> plain_columns(const Matrix& A, std::vector<char>& plain_row) const;
   Teuchos::RCP<FEGraph> make_graph(const Matrix& A, const std::vector<char>& plain_row,
                                    const std::vector<char>& plain_col,

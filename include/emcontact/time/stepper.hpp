@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "emcontact/contact/constraints.hpp"
+#include "emcontact/contact/active_set.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/time/newton.hpp"
 #include "emcontact/time/restoration.hpp"
@@ -67,12 +67,12 @@ class Stepper {
   State& s_;
   double dt_, end_;
   int max_cuts_, grow_after_;
-  std::unique_ptr<contact::ActiveConstraints> constraints_;
+  std::unique_ptr<contact::ActiveSetLoop> loop_;  ///< with contact pairs only
   std::unique_ptr<EnergyRestoration> restoration_;  ///< with `close gap` pairs only
   Teuchos::RCP<Vector> closure_p_;                  ///< the step's impulse direction (§7.4)
   contact::ClosureWork closure_work_;               ///< the step's contact work W_c (§7.4)
 
-  void apply(std::vector<contact::Active>& active);
+  void start_iterate(double h, bool no_contact, Vector& u1) const;
   void check_step_size(double h) const;
   bool solve_step(double h, Vector& u1, StepReport& rep);
   bool restore_energy(Vector& V1, StepReport& rep);

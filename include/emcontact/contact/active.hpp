@@ -1,0 +1,56 @@
+#pragma once
+// The active set of contact (ALGORITHM.md §4, §6) as plain records, and what a step reports of it.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "emcontact/contact/pairs.hpp"
+#include "kernels/math.hpp"
+
+namespace emc::contact {
+
+/// An active slave node: its pair, master facet and the frozen xi (full stick, §4).
+struct Active {
+  int slave = -1;  ///< global node id
+  int pair = -1;
+  int facet = -1;  ///< facet id in the pair
+  double xi[2] = {0, 0};
+  bool off = false;  ///< frictionless: outside every facet by more than tol_f (released at the end)
+  bool keep_gap = false;  ///< not closed although its pair closes gaps (re-activated, §7.2)
+  bool operator<(const Active& o) const { return slave < o.slave; }
+};
+
+/// Every rank's active entries by slave node (replicated), to compose chains (§3): a master
+/// node that is itself an active slave elsewhere contributes its own row of P.
+struct ActiveIndex {
+  std::map<int, Active> by_slave;
+  mutable int cycles = 0;  ///< chains that looped back and were cut
+};
+
+struct StepContactStats {
+  int active = 0;                   ///< global number of active slave nodes at the accepted step
+  int resolves = 0;                 ///< extra solves of the step for activation / release
+  int reactivated = 0;              ///< nodes released and activated again within the step (kept)
+  double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active nodes (global)
+  double normal_force_min = 0;      ///< smallest f_N of the nodes active at the accepted solve
+};
+
+/// docs/THEORY.md §7.2: the round-off of a gap g_N of a slave node at x on a facet of pair p
+/// (64 eps of the coordinates' and the facet's size): closing a gap below it moves nothing.
+KOKKOS_INLINE_FUNCTION double gap_roundoff(double edge, const double x[3]) {
+  const double a = kernels::fabs(x[0]), b = kernels::fabs(x[1]), c = kernels::fabs(x[2]);
+  const double xmax = a > b ? (a > c ? a : c) : (b > c ? b : c);
+  return 64 * kernels::epsilon() * (xmax + edge);
+}
+inline double gap_roundoff(const Pair& p, const double x[3]) {
+  return gap_roundoff(p.edge, x);
+}
+
+/// docs/THEORY.md §7.4: the contact work of a step's closure and its round-off (global).
+struct ClosureWork {
+  double work = 0;      ///< W_c
+  double roundoff = 0;  ///< |W_c| below this is round-off: nothing to give back
+};
+
+}  // namespace emc::contact

@@ -1,0 +1,72 @@
+#pragma once
+// The per-active-slave computations of contact as Kokkos loops over the active entries
+// (docs/THEORY.md §8): each entry reads its slave's and facet's positions from the rank's
+// contact nodes and writes a fixed-width block of its own; no entry writes another's.
+#include <Kokkos_Core.hpp>
+
+#include "emcontact/contact/nodes.hpp"
+#include "kernels/facet.hpp"
+#include "kernels/frictionless.hpp"
+
+namespace emc::contact {
+
+/// An active entry in the numbering of the rank's contact nodes, for kernels.
+struct ActiveRef {
+  int s = -1;                    ///< contact-node index of the slave
+  int m[3] = {-1, -1, -1};       ///< of its facet's nodes
+  int dof[3] = {-1, -1, -1};     ///< the slave's dofs in the owned map (local ids)
+  double xi[2] = {0, 0};         ///< frozen (stick) or current (frictionless) point on the facet
+  double edge = 0;               ///< the pair's mean facet size (docs/THEORY.md §7.2 round-off)
+  int closes = 0;                ///< the gap is closed (docs/THEORY.md §7.2)
+  int frictionless = 0;          ///< the pair's law (§4 or §5)
+};
+
+using Refs = Kokkos::View<ActiveRef*, ExecSpace>;
+using Values = Kokkos::View<double*, ExecSpace>;
+using Values3 = Kokkos::View<double* [3], ExecSpace>;
+using OwnedValues = Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace>;
+
+/// The facet nodes of entry a in configuration x; at the mid-point of x0 and x1.
+template <class X>
+KOKKOS_INLINE_FUNCTION void facet_at(const X& x, const ActiveRef& a, double xm[3][3]) {
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 3; ++i) xm[k][i] = x(a.m[k], i);
+}
+template <class X>
+KOKKOS_INLINE_FUNCTION void slave_at(const X& x, const ActiveRef& a, double y[3]) {
+  for (int i = 0; i < 3; ++i) y[i] = x(a.s, i);
+}
+
+/// §4: f_N = g_s . n_{n+1/2} per entry; g an owned vector's values (the contactless residual).
+void normal_forces(Refs refs, Positions x0, Positions x1, OwnedValues g, Values fN);
+
+/// g_N at n+1 of every entry on its facet's plane: (min, max) over the entries (+-1e300 if
+/// none or every facet is degenerate).
+void gap_range(Refs refs, Positions x1, double& lo, double& hi);
+
+/// docs/THEORY.md §7.2: 1 where the slave lies behind its facet at x deeper than the round-off.
+void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind);
+
+/// docs/THEORY.md §7.2: the master point N(xi) x_m at x of every entry (the closing target) and
+/// the largest distance of a slave from it in units of the facet size.
+double master_points(Refs refs, Positions x, Values3 target);
+
+/// §5 steps 2-3 on each frictionless entry's current facet: xi and x_{s,n+1} in place
+/// (xs1 starts at x1's slave), outside = how far xi lies outside the facet.
+void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1,
+                              Kokkos::View<double* [2], ExecSpace> xi, Values outside);
+
+/// §5 blocks P, Pt, X of every frictionless entry at (x0, x1), g the contactless residual.
+void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
+                         Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks);
+
+/// docs/THEORY.md §7.4 per closed entry, with F its transmitted force: the work
+/// F . (dx_s - N dx_m) and its round-off (sums), and the impulse weight w n at n+1 and the
+/// CPP N' at n+1 (w = 0: no impulse).
+struct ClosureTerms {
+  double work = 0, roundoff = 0;
+};
+ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn,
+                           Values3 N1);
+
+}  // namespace emc::contact

@@ -1,0 +1,53 @@
+#pragma once
+// The active-set loop of a step (ALGORITHM.md §6): solve with a trial set, activate the slave
+// nodes that entered a facet (§6.3), release those in tension or off their master (§6.4), and
+// solve again until the set is settled; then accept (§6.5). The time stepper only asks "solve
+// this step" and reads what was settled.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "emcontact/contact/constraints.hpp"
+#include "emcontact/contact/contact.hpp"
+
+namespace emc::contact {
+
+/// What a settled step leaves for t_{n+1}.
+struct SettledSet {
+  std::vector<Active> active;        ///< my entries that stay active (§6.5)
+  std::vector<double> normal_force;  ///< their f_N at the accepted solve
+  /// Every entry of mine active at the accepted solve (the monitors' active_contacts), with its
+  /// f_N and whether it stays active (1) or is released at the end of the step (2).
+  std::vector<int> nodes, status;
+  std::vector<double> force;
+  StepContactStats stats;
+  ClosureWork closure;  ///< docs/THEORY.md §7.4 (with `close gap` pairs)
+};
+
+class ActiveSetLoop {
+ public:
+  ActiveSetLoop(const Contact& contact, linalg::Elimination& elim, std::vector<GO> fixed);
+
+  /// Newton's hooks for the constraints of the trial set.
+  linalg::ConstraintHooks* hooks() { return &constraints_; }
+
+  /// One Newton solve of the step with the trial set applied (P rebuilt if `changed`; `empty`:
+  /// no rank has an active entry). Resets u1 to its start iterate; returns the contactless
+  /// residual at the solution, or null if Newton failed.
+  using Solve = std::function<const Vector*(bool changed, bool empty)>;
+
+  /// §6: the step from u0 with the set `active` at t_n; u1 holds a prediction of u_{n+1} on
+  /// entry (the reach of the contact nodes) and the solution on return. p (or null): the
+  /// closure's impulse direction (docs/THEORY.md §7.4). False if a solve failed.
+  bool solve(const Vector& u0, Vector& u1, const std::vector<Active>& active, const Solve& solve,
+             SettledSet& out, Vector* p);
+
+ private:
+  const Contact& contact_;
+  ActiveConstraints constraints_;
+
+  void accept(const Vector& u0, const Vector& u1, const Vector& g, std::vector<Active>& trial,
+              const std::vector<double>& fN, SettledSet& out, Vector* p);
+};
+
+}  // namespace emc::contact

@@ -1,0 +1,61 @@
+#pragma once
+// One contact law per object (ALGORITHM.md §4 full stick, §5 frictionless): where xi is taken
+// at activation, the rows it adds to the elimination (P, its exact right factor Pt, the
+// variation X, the dummies' beta), and how it restores its constraints on the iterate. A new law
+// implements this interface and is returned by make_law; the others are not touched.
+#include <memory>
+#include <vector>
+
+#include "emcontact/contact/active.hpp"
+#include "emcontact/contact/nodes.hpp"
+#include "emcontact/linalg/elimination.hpp"
+
+namespace emc::contact {
+
+class Contact;
+
+/// What a law sees of the iterate: the active set (all ranks', for chains) and the contact
+/// nodes' positions at t_n and at the iterate (host copies; empty when the law's rows do not
+/// depend on the iterate).
+struct LawState {
+  const Contact& contact;
+  const ActiveIndex& index;
+  Positions x0, x1;
+  Positions::HostMirror xh;  ///< at n+1/2 (frictionless chains)
+};
+
+/// The elimination's rows a law contributes.
+struct LawRows {
+  std::vector<linalg::PRow> rows;     ///< rows of P
+  std::vector<linalg::PRow> pt_rows;  ///< rows of Pt that differ from P's
+  std::vector<linalg::Entry> X;       ///< the variation of P^T
+  std::vector<std::pair<GO, double>> beta;  ///< (dummy dof, beta) from the Newton matrix
+  std::vector<GO> dummies;  ///< dummies whose beta follows A while P is kept (eq. 44)
+};
+
+class Law {
+ public:
+  virtual ~Law() = default;
+  virtual Kind kind() const = 0;
+  /// §6.3: xi at activation is the CPP in the configuration x0 + w (x1 - x0).
+  virtual double activation_weight() const = 0;
+  /// §6.3 and docs/THEORY.md §7.2: whether that xi is clamped to the facet.
+  virtual bool clamps(const Pair& p) const = 0;
+  /// Whether P (Pt, X) changes with the iterate and is rebuilt at every Newton iteration.
+  virtual bool iterate_dependent() const = 0;
+  /// The rows of this law's entries among `active` at the iterate; g the contactless residual
+  /// and A the Newton matrix (null when only P is asked for: the set changed).
+  virtual void rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
+                    const Matrix* A, LawRows& out) const = 0;
+  /// Newton's start iterate satisfies the law's constraints (collective; called on every rank
+  /// when any rank has an entry of this law).
+  virtual void start(const LawState& s, std::vector<Active>& active, Vector& u1) const = 0;
+  /// After u1 += P dq: restores the nonlinear constraints (collective, as start).
+  virtual void after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const = 0;
+  /// §6.4: whether an entry with normal force fN is released at the end of the solve.
+  virtual bool releases(const Active& a, double fN) const = 0;
+};
+
+std::shared_ptr<const Law> make_law(Kind kind);
+
+}  // namespace emc::contact

@@ -1,0 +1,117 @@
+#pragma once
+// The contact nodes of this rank (docs/THEORY.md §8): the slave nodes it owns, their neighbours
+// on the slave surface, and the nodes of the master facets within reach of its slaves over the
+// step, with the facets of the chains through them. Only their positions are imported, so a
+// rank's contact memory and traffic grow with its share of the contact surface, not the model.
+#include <Kokkos_Core.hpp>
+#include <unordered_map>
+#include <vector>
+
+#include "emcontact/contact/active.hpp"
+#include "emcontact/contact/pairs.hpp"
+#include "emcontact/fem/discretization.hpp"
+#include "kernels/facet.hpp"
+#include "kernels/math.hpp"
+
+namespace emc::contact {
+
+/// Positions of the contact nodes (contact-node index, coordinate).
+using Positions = Kokkos::View<double* [3], ExecSpace>;
+
+/// A pair's master facets held by this rank, by ascending facet id.
+struct LocalFacets {
+  Kokkos::View<int* [3], ExecSpace> nodes;  ///< contact-node indices
+  Kokkos::View<int*, ExecSpace> id;         ///< the facet's id in the pair
+  std::unordered_map<int, int> index;       ///< facet id -> position (host)
+  int size() const { return static_cast<int>(id.extent(0)); }
+  int find(int facet) const {
+    auto it = index.find(facet);
+    return it == index.end() ? -1 : it->second;
+  }
+};
+
+/// A pair's slave nodes owned by this rank and the slave-surface triangles around each (for its
+/// normal), in contact-node indices: triangles tri(start(k)) .. tri(start(k + 1) - 1) of node k.
+struct LocalSlaves {
+  Kokkos::View<int*, ExecSpace> node;      ///< contact-node index of my k-th slave
+  Kokkos::View<int*, ExecSpace> start;     ///< CSR offsets into tri
+  Kokkos::View<int* [3], ExecSpace> tri;   ///< contact-node indices
+  int size() const { return static_cast<int>(node.extent(0)); }
+};
+
+/// The outward unit normal of the slave surface at my k-th slave in configuration x: the
+/// area-weighted mean of its triangles' normals.
+template <class X>
+KOKKOS_INLINE_FUNCTION void slave_normal(const LocalSlaves& ls, int k, const X& x, double n[3]) {
+  n[0] = n[1] = n[2] = 0;
+  for (int j = ls.start(k); j < ls.start(k + 1); ++j) {
+    double xm[3][3];
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) xm[a][i] = x(ls.tri(j, a), i);
+    const kernels::Facet f = kernels::facet(xm);
+    for (int i = 0; i < 3; ++i) n[i] += f.area2 * f.n[i];
+  }
+  const double len = kernels::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (int i = 0; i < 3; ++i) n[i] = len > 0 ? n[i] / len : 0.0;
+}
+
+/// What the selection moved: for perf/README.md's traffic figures.
+struct NodeTraffic {
+  long long selections = 0;      ///< calls of select
+  long long imports = 0;         ///< position imports
+  long long bytes_imported = 0;  ///< received from other ranks over all imports
+  int nodes = 0;                 ///< contact nodes at the last selection
+  int remote = 0;                ///< of which owned by other ranks
+};
+
+class ContactNodes {
+ public:
+  ContactNodes(const fem::Discretization& disc, const std::vector<Pair>& pairs);
+
+  /// docs/THEORY.md §8: selects the facets whose sweep from u0 to u1 meets the sweep of my slave
+  /// nodes grown by the pair's max penetration and facet size, and the facets of the entries of
+  /// `index` whose slave is one of my contact nodes (chains, until closed) (collective).
+  void select(const Vector& u0, const Vector& u1, const ActiveIndex& index);
+
+  /// x = X + u of my contact nodes; u an owned vector (collective: imports the remote ones).
+  void positions(const Vector& u, Positions x) const;
+  Positions new_positions(const char* label) const;
+  /// Host copy of the positions at u (collective).
+  Positions::HostMirror host_positions(const Vector& u) const;
+
+  int size() const { return static_cast<int>(gid_.size()); }
+  /// Contact-node index of global node n (-1 if not one of mine); its global node id.
+  int local(int n) const {
+    auto it = lid_.find(n);
+    return it == lid_.end() ? -1 : it->second;
+  }
+  int global(int l) const { return gid_[l]; }
+  const LocalFacets& facets(int pair) const { return facets_[pair]; }
+  const LocalSlaves& slaves(int pair) const { return slaves_[pair]; }
+  /// The slave nodes of the pair that this rank owns (global ids, ascending).
+  const std::vector<int>& my_slaves(int pair) const { return my_slaves_[pair]; }
+  const NodeTraffic& traffic() const { return traffic_; }
+
+ private:
+  const fem::Discretization& disc_;
+  const std::vector<Pair>& pairs_;
+  std::vector<std::vector<int>> my_slaves_;
+  std::vector<std::vector<int>> held_;  ///< per pair: deformable facets my overlap map holds
+  std::vector<int> gid_;                ///< contact node -> global node (deformable, then rigid)
+  std::unordered_map<int, int> lid_;
+  int deformable_ = 0;  ///< the first deformable_ contact nodes carry dofs
+  std::vector<LocalFacets> facets_;
+  std::vector<LocalSlaves> slaves_;
+  Teuchos::RCP<const Map> map_;
+  Teuchos::RCP<const Import> import_;
+  Kokkos::View<double* [3], ExecSpace> X_;  ///< reference (or rigid) positions
+  mutable NodeTraffic traffic_;
+
+  std::vector<std::vector<double>> slave_boxes(const Vector& u0, const Vector& u1) const;
+  std::vector<std::vector<int>> facets_in_reach(const Vector& u0, const Vector& u1) const;
+  void close_chains(std::vector<std::vector<int>>& need, const ActiveIndex& index) const;
+  void build(const std::vector<std::vector<int>>& need);
+  void build_slaves(std::size_t pair);
+};
+
+}  // namespace emc::contact

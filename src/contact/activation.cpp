@@ -1,0 +1,177 @@
+// docs/THEORY.md §6.3 (activation by the facet entered over the step) and §6.6 (no slave node
+// starts inside its master), on the rank's contact nodes.
+#include <Teuchos_CommHelpers.hpp>
+#include <cstdio>
+
+#include "emcontact/contact/contact.hpp"
+#include "emcontact/contact/detection.hpp"
+#include "emcontact/contact/law.hpp"
+#include "emcontact/error.hpp"
+
+namespace emc::contact {
+
+namespace {
+
+/// The grid of a pair's local facets at x (the host grid holds references to its inputs).
+struct PairGrid {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  std::unique_ptr<FacetGrid> grid;
+  PairGrid(const LocalFacets& lf, Positions xd, double margin) {
+    auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.nodes);
+    auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xd);
+    facets.resize(fh.extent(0));
+    for (std::size_t f = 0; f < facets.size(); ++f)
+      for (int a = 0; a < 3; ++a) facets[f][a] = fh(f, a);
+    x.resize(3 * xh.extent(0));
+    for (std::size_t n = 0; n < xh.extent(0); ++n)
+      for (int i = 0; i < 3; ++i) x[3 * n + i] = xh(n, i);
+    grid = std::make_unique<FacetGrid>(facets, x, margin);
+  }
+};
+
+/// docs/THEORY.md §6.3 for each of my slave nodes of pair p not busy: the facet it enters and
+/// xi, clamped if `clamp`, from the configuration x0 + w (x1 - x0); hit(k).slave = -1 if none
+/// (else its contact-node index, and the facet's local index).
+void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
+                    const Kokkos::View<int* [3], ExecSpace> facets, Positions x0, Positions x1,
+                    Kokkos::View<int*, ExecSpace> busy, const EntryRule rule, const double w,
+                    const bool clamp, const double edge, const int p,
+                    Kokkos::View<Active*, ExecSpace> hit) {
+  const FacetGrid* grid = &grid1;  // host grid: by pointer (device-ready grid: by value)
+  Kokkos::parallel_for(
+      "emcontact::contact::detect", Kokkos::RangePolicy<ExecSpace>(0, ls.size()),
+      KOKKOS_LAMBDA(const int k) {
+        const int s = ls.node(k);
+        if (busy(s)) return;
+        double n_s[3];
+        slave_normal(ls, k, x1, n_s);
+        const Hit h1 = entered_facet(*grid, facets, x0, x1, s, n_s, rule);
+        if (h1.facet < 0) return;
+        double xf[3][3], y[3];
+        for (int i = 0; i < 3; ++i) {
+          y[i] = w == 0 ? x0(s, i) : (1 - w) * x0(s, i) + w * x1(s, i);
+          for (int a = 0; a < 3; ++a) {
+            const int n = facets(h1.facet, a);
+            xf[a][i] = w == 0 ? x0(n, i) : (1 - w) * x0(n, i) + w * x1(n, i);
+          }
+        }
+        const kernels::FacetMetric m = kernels::facet_metric(xf);
+        double xi[2], gap;
+        if (!kernels::facet_cpp(y, xf, m, xi, gap)) return;
+        if (clamp) kernels::facet_clamp(m, xi);
+        Active a;
+        a.slave = s;  // contact-node index here; global below
+        a.pair = p;
+        a.facet = h1.facet;
+        a.xi[0] = xi[0];
+        a.xi[1] = xi[1];
+        // docs/THEORY.md §7.2: a node already behind the facet at t_n keeps its gap (closing
+        // it would push it out: energy from nowhere)
+        double xm0[3][3], y0[3], xi0[2], g0;
+        for (int i = 0; i < 3; ++i) {
+          y0[i] = x0(s, i);
+          for (int b = 0; b < 3; ++b) xm0[b][i] = x0(facets(h1.facet, b), i);
+        }
+        a.keep_gap = kernels::facet_cpp(y0, xm0, xi0, g0) && g0 < -gap_roundoff(edge, y0);
+        hit(k) = a;
+      });
+}
+
+}  // namespace
+
+std::vector<Active> Contact::detect(Positions x0, Positions x1,
+                                    const std::vector<Active>& active) const {
+  Kokkos::View<int*, ExecSpace> busy("emc::busy", nodes_.size());
+  auto bh = Kokkos::create_mirror_view(busy);
+  for (const auto& a : active) bh(nodes_.local(a.slave)) = 1;
+  Kokkos::deep_copy(busy, bh);
+  std::vector<Active> found;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const auto hits = detect_pair(static_cast<int>(p), x0, x1, busy);
+    for (const auto& a : hits) bh(nodes_.local(a.slave)) = 1;  // a node in two pairs: the first
+    Kokkos::deep_copy(busy, bh);
+    found.insert(found.end(), hits.begin(), hits.end());
+  }
+  return found;
+}
+
+// docs/THEORY.md §6.3: xi (clamped to the facet unless the law keeps it) is the CPP in the
+// law's configuration: at t_n for full stick (§4), at the trial mid-point for frictionless (§5).
+std::vector<Active> Contact::detect_pair(int p, Positions x0, Positions x1,
+                                         Kokkos::View<int*, ExecSpace> busy) const {
+  const Pair& pr = pairs_[p];
+  const LocalSlaves ls = nodes_.slaves(p);
+  const LocalFacets& lf = nodes_.facets(p);
+  const int ns = ls.size();
+  if (ns == 0 || lf.size() == 0) return {};
+  const PairGrid pg(lf, x1, pr.dmax);
+  Kokkos::View<Active*, ExecSpace> hit("emc::detect_hits", ns);
+  entering_nodes(*pg.grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr), laws_[p]->activation_weight(),
+                 laws_[p]->clamps(pr), pr.edge, p, hit);
+  auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hit);
+  auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);
+  std::vector<Active> found;
+  for (int k = 0; k < ns; ++k) {
+    Active a = hh(k);
+    if (a.slave < 0) continue;
+    a.slave = nodes_.global(a.slave);
+    a.facet = ids(a.facet);
+    found.push_back(a);
+  }
+  return found;
+}
+
+// docs/THEORY.md §6.6: no slave node may start inside its master (reference configuration).
+void Contact::check_initial_penetration(const std::string& file) const {
+  const auto x = contact::positions(disc_.model(), {});
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const Pair& pr = pairs_[p];
+    const Penetration mine = penetrating_nodes(pr, nodes_.my_slaves(p), x, 1e-9 * pr.edge);
+    const int count = global_count(mine.count);
+    if (count == 0) continue;
+    double deepest = 0;
+    Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MIN, 1, &mine.deepest, &deepest);
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "%s: Contact/%s: %d slave node%s penetrate%s the master at t = 0 (deepest "
+                  "%.3g, %.3g of the facet size); the bodies must not overlap at the start, "
+                  "and a master's facet normals must face the slave (a rigid plane's 'axis' "
+                  "points toward the slave)",
+                  file.c_str(), pr.name.c_str(), count, count == 1 ? "" : "s",
+                  count == 1 ? "s" : "", -deepest, -deepest / pr.edge);
+    throw InputError(buf);
+  }
+  for (const Pair& pr : pairs_)
+    if (pr.rigid_master) check_facing(pr, x, file);
+}
+
+// docs/THEORY.md §6.6: a rigid surface whose facets turn their back to the slave body (its
+// centroid behind the facet it projects into, at any depth) can never be touched.
+void Contact::check_facing(const Pair& pr, const std::vector<double>& x,
+                           const std::string& file) const {
+  double c[3] = {0, 0, 0};
+  for (int s : pr.slaves)
+    for (int i = 0; i < 3; ++i) c[i] += x[3 * s + i] / pr.slaves.size();
+  double nearest = 1e300, gap_nearest = 0;
+  for (const auto& f : pr.facets) {
+    double xm[3][3], xi[2], gap;
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) xm[k][i] = x[3 * f[k] + i];
+    if (!kernels::facet_cpp(c, xm, xi, gap) || kernels::facet_outside(xi) > 0) continue;
+    if (std::fabs(gap) < nearest) {
+      nearest = std::fabs(gap);
+      gap_nearest = gap;
+    }
+  }
+  if (!(nearest < 1e300) || gap_nearest >= 0) return;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
+                "centroid %.3g behind the facet it projects into); a master's facet normals must "
+                "face the slave (a rigid plane's 'axis' points toward the slave)",
+                file.c_str(), pr.name.c_str(), -gap_nearest);
+  throw InputError(buf);
+}
+
+}  // namespace emc::contact

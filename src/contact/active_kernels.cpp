@@ -1,0 +1,155 @@
+// docs/THEORY.md §8: the per-active-slave loops of contact (Kokkos, one entry per index).
+#include "emcontact/contact/active_kernels.hpp"
+
+namespace emc::contact {
+
+namespace {
+
+using Policy = Kokkos::RangePolicy<ExecSpace>;
+
+int count(const Refs& refs) {
+  return static_cast<int>(refs.extent(0));
+}
+
+}  // namespace
+
+// §4: the normal force on the facet at n+1/2.
+void normal_forces(Refs refs, Positions x0, Positions x1, OwnedValues g, Values fN) {
+  Kokkos::parallel_for(
+      "emcontact::contact::normal_forces", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        double xm0[3][3], xm1[3][3], xh[3][3];
+        facet_at(x0, a, xm0);
+        facet_at(x1, a, xm1);
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) xh[j][i] = 0.5 * (xm0[j][i] + xm1[j][i]);
+        const kernels::Facet f = kernels::facet(xh);
+        double s = 0;
+        for (int i = 0; i < 3; ++i) s += g(a.dof[i], 0) * f.n[i];
+        fN(k) = s;
+      });
+}
+
+void gap_range(Refs refs, Positions x1, double& lo, double& hi) {
+  Kokkos::MinMaxScalar<double> r;
+  Kokkos::parallel_reduce(
+      "emcontact::contact::gap_range", Policy(0, count(refs)),
+      KOKKOS_LAMBDA(const int k, Kokkos::MinMaxScalar<double>& mm) {
+        const ActiveRef a = refs(k);
+        double xm[3][3], y[3], xi[2], gap;
+        facet_at(x1, a, xm);
+        slave_at(x1, a, y);
+        if (!kernels::facet_cpp(y, xm, xi, gap)) return;  // degenerate facet
+        if (gap < mm.min_val) mm.min_val = gap;
+        if (gap > mm.max_val) mm.max_val = gap;
+      },
+      Kokkos::MinMax<double>(r));
+  lo = count(refs) ? r.min_val : 1e300;
+  hi = count(refs) ? r.max_val : -1e300;
+  if (lo > hi) lo = 1e300, hi = -1e300;
+}
+
+void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind) {
+  Kokkos::parallel_for(
+      "emcontact::contact::behind_facets", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        double xm[3][3], y[3], xi[2], gap;
+        facet_at(x, a, xm);
+        slave_at(x, a, y);
+        behind(k) = kernels::facet_cpp(y, xm, xi, gap) && gap < -gap_roundoff(a.edge, y);
+      });
+}
+
+double master_points(Refs refs, Positions x, Values3 target) {
+  double moved = 0;
+  Kokkos::parallel_reduce(
+      "emcontact::contact::master_points", Policy(0, count(refs)),
+      KOKKOS_LAMBDA(const int k, double& mx) {
+        const ActiveRef a = refs(k);
+        double xm[3][3], N[3];
+        facet_at(x, a, xm);
+        kernels::facet_shape(a.xi, N);
+        for (int c = 0; c < 3; ++c) {
+          target(k, c) = N[0] * xm[0][c] + N[1] * xm[1][c] + N[2] * xm[2][c];
+          const double d = kernels::fabs(target(k, c) - x(a.s, c)) / a.edge;
+          if (d > mx) mx = d;
+        }
+      },
+      Kokkos::Max<double>(moved));
+  return moved;
+}
+
+void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1,
+                              Kokkos::View<double* [2], ExecSpace> xi, Values outside) {
+  Kokkos::parallel_for(
+      "emcontact::contact::frictionless_project", Policy(0, count(refs)),
+      KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        double xm0[3][3], xm1[3][3], y0[3], y1[3], z[2] = {xi(k, 0), xi(k, 1)};
+        facet_at(x0, a, xm0);
+        facet_at(x1, a, xm1);
+        slave_at(x0, a, y0);
+        slave_at(x1, a, y1);
+        outside(k) = kernels::frictionless_project(y0, y1, xm0, xm1, z, a.closes != 0);
+        for (int c = 0; c < 3; ++c) xs1(k, c) = y1[c];
+        xi(k, 0) = z[0];
+        xi(k, 1) = z[1];
+      });
+}
+
+void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
+                         Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks) {
+  Kokkos::parallel_for(
+      "emcontact::contact::frictionless_blocks", Policy(0, count(refs)),
+      KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        double xm0[3][3], xm1[3][3], y0[3], y1[3], gs[3];
+        facet_at(x0, a, xm0);
+        facet_at(x1, a, xm1);
+        slave_at(x0, a, y0);
+        slave_at(x1, a, y1);
+        for (int c = 0; c < 3; ++c) gs[c] = g(a.dof[c], 0);
+        kernels::frictionless_blocks(y0, y1, xm0, xm1, a.xi, gs, blocks(k), a.closes != 0);
+      });
+}
+
+// docs/THEORY.md §7.4.
+ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn,
+                           Values3 N1) {
+  ClosureTerms sum;
+  Kokkos::parallel_reduce(
+      "emcontact::contact::closure_terms", Policy(0, count(refs)),
+      KOKKOS_LAMBDA(const int k, double& work, double& roundoff) {
+        const ActiveRef a = refs(k);
+        double xm0[3][3], xm1[3][3], y0[3], y1[3], N[3];
+        facet_at(x0, a, xm0);
+        facet_at(x1, a, xm1);
+        slave_at(x0, a, y0);
+        slave_at(x1, a, y1);
+        kernels::facet_shape(a.xi, N);
+        for (int c = 0; c < 3; ++c) {
+          double rel = y1[c] - y0[c];
+          for (int i = 0; i < 3; ++i) rel -= N[i] * (xm1[i][c] - xm0[i][c]);
+          work += F(k, c) * rel;
+        }
+        // closing a gap at the round-off of the coordinates moves nothing: W_c below the sum
+        // of these is no energy to give back (nodes deeper keep their gap, §7.2)
+        roundoff += (kernels::fabs(F(k, 0)) + kernels::fabs(F(k, 1)) + kernels::fabs(F(k, 2))) *
+                    gap_roundoff(a.edge, y1);
+        double xi1[2], gap;
+        for (int c = 0; c < 3; ++c) wn(k, c) = N1(k, c) = 0;
+        if (!kernels::facet_cpp(y1, xm1, xi1, gap)) return;
+        const kernels::Facet f1 = kernels::facet(xm1);
+        const double w = kernels::fmax(0.0, F(k, 0) * f1.n[0] + F(k, 1) * f1.n[1] + F(k, 2) * f1.n[2]);
+        double M[3];
+        kernels::facet_shape(xi1, M);
+        for (int c = 0; c < 3; ++c) {
+          wn(k, c) = w * f1.n[c];
+          N1(k, c) = M[c];
+        }
+      },
+      sum.work, sum.roundoff);
+  return sum;
+}
+
+}  // namespace emc::contact

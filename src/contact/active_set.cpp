@@ -1,0 +1,95 @@
+#include "emcontact/contact/active_set.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+#include <algorithm>
+#include <set>
+
+#include "emcontact/contact/law.hpp"
+
+namespace emc::contact {
+
+ActiveSetLoop::ActiveSetLoop(const Contact& contact, linalg::Elimination& elim,
+                             std::vector<GO> fixed)
+    : contact_(contact), constraints_(contact, elim, std::move(fixed)) {}
+
+// ALGORITHM.md §6, one step.
+bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active>& active,
+                          const Solve& solve, SettledSet& out, Vector* p) {
+  std::vector<Active> trial = active;
+  std::set<int> released, pinned;
+  out.stats = StepContactStats{};
+  std::vector<double> fN;
+  const Vector* g = nullptr;
+  for (;;) {
+    // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
+    // last solution) and of the trial set's chains
+    contact_.select(u0, u1, contact_.gather(trial));
+    const bool changed = constraints_.use(&trial);
+    g = solve(changed, contact_.global_count(static_cast<int>(trial.size())) == 0);
+    if (!g) return false;
+    contact_.select(u0, u1, constraints_.index());  // the exact sweep of the solution
+    const Positions x0 = contact_.positions(u0), x1 = contact_.positions(u1);
+    const auto fresh = contact_.detect(x0, x1, trial);
+    fN = contact_.normal_forces(*g, x0, x1, trial);
+    std::vector<Active> next;
+    int n_release = 0;
+    for (std::size_t k = 0; k < trial.size(); ++k) {
+      const int s = trial[k].slave;
+      // §6.4: tensile (or, frictionless, off its master by more than tol_f) -> release
+      if (contact_.law(trial[k].pair).releases(trial[k], fN[k]) && !pinned.count(s)) {
+        released.insert(s);
+        ++n_release;
+      } else {
+        next.push_back(trial[k]);
+      }
+    }
+    for (const auto& a : fresh) {
+      if (released.count(a.slave)) {  // released in this step and penetrating again: keep it
+        pinned.insert(a.slave);
+        ++out.stats.reactivated;
+      }
+      next.push_back(a);
+    }
+    const int changes = contact_.global_count(static_cast<int>(fresh.size()) + n_release);
+    if (changes == 0) break;
+    std::sort(next.begin(), next.end());
+    trial = std::move(next);
+    ++out.stats.resolves;
+  }
+  accept(u0, u1, *g, trial, fN, out, p);
+  return true;
+}
+
+// §6.5: accept; nodes still in tension (only pinned ones can be) leave for the next step.
+void ActiveSetLoop::accept(const Vector& u0, const Vector& u1, const Vector& g,
+                           std::vector<Active>& trial, const std::vector<double>& fN,
+                           SettledSet& out, Vector* p) {
+  out.active.clear();
+  out.normal_force.clear();
+  out.nodes.clear();
+  out.status.clear();
+  out.force.assign(fN.begin(), fN.end());
+  for (std::size_t k = 0; k < trial.size(); ++k) {
+    const bool stays = !contact_.law(trial[k].pair).releases(trial[k], fN[k]);
+    out.nodes.push_back(trial[k].slave);
+    out.status.push_back(stays ? 1 : 2);
+    if (stays) {
+      out.active.push_back(trial[k]);
+      out.normal_force.push_back(fN[k]);
+    }
+  }
+  const Positions x0 = contact_.positions(u0), x1 = contact_.positions(u1);
+  if (p) {  // docs/THEORY.md §7.4: the work the closure made the contact forces do
+    out.closure = contact_.closure_work(g, x0, x1, trial, *p);
+    contact_.mark_kept_gaps(out.active, x1);
+  }
+  out.stats.active = contact_.global_count(static_cast<int>(trial.size()));
+  out.stats.reactivated = contact_.global_count(out.stats.reactivated);
+  contact_.gap_range(x1, trial, out.stats.gap_min, out.stats.gap_max);
+  double fmin = 0, gmin = 0;
+  for (double f : fN) fmin = std::min(fmin, f);  // every node active at the accepted solve
+  Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_MIN, 1, &fmin, &gmin);
+  out.stats.normal_force_min = gmin;
+}
+
+}  // namespace emc::contact

@@ -1,0 +1,256 @@
+// docs/THEORY.md §8: the contact nodes of a rank and the import of their positions only.
+#include "emcontact/contact/nodes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <set>
+
+#include "emcontact/parallel.hpp"
+
+namespace emc::contact {
+
+namespace {
+
+constexpr double kHuge = 1e300;
+
+bool boxes_meet(const double* a, const double* b) {
+  for (int i = 0; i < 3; ++i)
+    if (a[i] > b[3 + i] || b[i] > a[3 + i]) return false;
+  return true;
+}
+
+void grow(double* box, const double x[3]) {
+  for (int i = 0; i < 3; ++i) {
+    box[i] = std::min(box[i], x[i]);
+    box[3 + i] = std::max(box[3 + i], x[i]);
+  }
+}
+
+}  // namespace
+
+ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pair>& pairs)
+    : disc_(disc), pairs_(pairs), facets_(pairs.size()), slaves_(pairs.size()) {
+  const int rank = disc_.comm()->getRank();
+  const auto& overlap = *disc_.overlap_map();
+  const auto holds = [&](int n) {
+    return overlap.getLocalElement(fem::dof_gid(n, 0)) != Tpetra::Details::OrdinalTraits<LO>::invalid();
+  };
+  for (const auto& p : pairs_) {
+    my_slaves_.emplace_back();
+    for (int s : p.slaves)
+      if (disc_.part().node_owner[s] == rank) my_slaves_.back().push_back(s);
+    held_.emplace_back();
+    if (p.rigid_master) continue;
+    for (int f = 0; f < static_cast<int>(p.facets.size()); ++f) {
+      const auto& t = p.facets[f];
+      if (holds(t[0]) && holds(t[1]) && holds(t[2])) held_.back().push_back(f);
+    }
+  }
+}
+
+// The box of my slave nodes of each pair over the step (x at u0 and at u1), grown by the pair's
+// max penetration and mean facet size (the reach of Newton's iterates and of §5 step 2).
+std::vector<std::vector<double>> ContactNodes::slave_boxes(const Vector& u0, const Vector& u1) const {
+  const auto& m = disc_.model();
+  const auto& map = *disc_.owned_map();
+  auto v0 = u0.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto v1 = u1.getLocalViewHost(Tpetra::Access::ReadOnly);
+  std::vector<std::vector<double>> boxes;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    std::vector<double> b = {kHuge, kHuge, kHuge, -kHuge, -kHuge, -kHuge};
+    for (int s : my_slaves_[p])
+      for (const auto* v : {&v0, &v1}) {
+        double x[3];
+        for (int c = 0; c < 3; ++c)
+          x[c] = m.X[3 * s + c] + (*v)(map.getLocalElement(fem::dof_gid(s, c)), 0);
+        grow(b.data(), x);
+      }
+    const double reach = pairs_[p].dmax + pairs_[p].edge;
+    for (int i = 0; i < 3 && !my_slaves_[p].empty(); ++i) {
+      b[i] -= reach;
+      b[3 + i] += reach;
+    }
+    boxes.push_back(std::move(b));
+  }
+  return boxes;
+}
+
+// Each rank tests the deformable facets its overlap map holds against every rank's slave boxes
+// and sends their ids; rigid facets (never moving, known everywhere) are tested locally.
+std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Vector& u0,
+                                                            const Vector& u1) const {
+  const auto& m = disc_.model();
+  const int np = static_cast<int>(pairs_.size()), nr = disc_.comm()->getSize();
+  const auto mine = slave_boxes(u0, u1);
+  std::vector<double> flat;
+  for (const auto& b : mine) flat.insert(flat.end(), b.begin(), b.end());
+  const auto all = allgather(*disc_.comm(), flat);  // [rank][pair][6]
+  auto o0 = disc_.new_overlap_vector(), o1 = disc_.new_overlap_vector();
+  disc_.to_overlap(u0, *o0);
+  disc_.to_overlap(u1, *o1);
+  auto v0 = o0->getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto v1 = o1->getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto& overlap = *disc_.overlap_map();
+  std::vector<std::vector<int>> need(np), sends(nr);
+  for (int p = 0; p < np; ++p) {
+    const Pair& pr = pairs_[p];
+    for (int f = 0; f < (pr.rigid_master ? static_cast<int>(pr.facets.size()) : 0); ++f) {
+      double box[6] = {kHuge, kHuge, kHuge, -kHuge, -kHuge, -kHuge};
+      for (int a : pr.facets[f]) grow(box, &m.rigid_X[3 * (a - m.num_nodes())]);
+      if (boxes_meet(box, mine[p].data())) need[p].push_back(f);
+    }
+    for (int f : held_[p]) {
+      double box[6] = {kHuge, kHuge, kHuge, -kHuge, -kHuge, -kHuge};
+      for (int a : pr.facets[f])
+        for (const auto* v : {&v0, &v1}) {
+          double x[3];
+          for (int c = 0; c < 3; ++c)
+            x[c] = m.X[3 * a + c] + (*v)(overlap.getLocalElement(fem::dof_gid(a, c)), 0);
+          grow(box, x);
+        }
+      for (int r = 0; r < nr; ++r)
+        if (boxes_meet(box, &all[6 * (r * np + p)])) sends[r].insert(sends[r].end(), {p, f});
+    }
+  }
+  const auto got = exchange_ints(*disc_.comm(), sends);
+  for (std::size_t k = 0; k + 1 < got.size(); k += 2) need[got[k]].push_back(got[k + 1]);
+  return need;
+}
+
+// §3 chains: an active entry whose slave is one of my contact nodes adds its facet (its rows of
+// P, and for frictionless its tangents at n+1/2, enter mine).
+void ContactNodes::close_chains(std::vector<std::vector<int>>& need,
+                                const ActiveIndex& index) const {
+  std::vector<std::set<int>> have(need.size());
+  std::set<int> nodes;
+  for (std::size_t p = 0; p < need.size(); ++p) {
+    have[p].insert(need[p].begin(), need[p].end());
+    for (int s : my_slaves_[p]) nodes.insert(s);
+    for (int f : need[p])
+      for (int a : pairs_[p].facets[f]) nodes.insert(a);
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& [s, a] : index.by_slave)
+      if (nodes.count(s) && have[a.pair].insert(a.facet).second) {
+        for (int n : pairs_[a.pair].facets[a.facet]) nodes.insert(n);
+        changed = true;
+      }
+  }
+  for (std::size_t p = 0; p < need.size(); ++p) need[p].assign(have[p].begin(), have[p].end());
+}
+
+void ContactNodes::select(const Vector& u0, const Vector& u1, const ActiveIndex& index) {
+  auto need = facets_in_reach(u0, u1);
+  close_chains(need, index);
+  build(need);
+  ++traffic_.selections;
+}
+
+void ContactNodes::build(const std::vector<std::vector<int>>& need) {
+  const auto& m = disc_.model();
+  std::set<int> deformable, rigid;
+  auto add = [&](int n) { (n < m.num_nodes() ? deformable : rigid).insert(n); };
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const Pair& pr = pairs_[p];
+    for (int s : my_slaves_[p]) {  // the slave and its slave-surface neighbours (its normal)
+      add(s);
+      const auto k = std::lower_bound(pr.slaves.begin(), pr.slaves.end(), s) - pr.slaves.begin();
+      for (int t = pr.tri_start[k]; t < pr.tri_start[k + 1]; ++t)
+        for (int n : pr.slave_facets[pr.slave_tris[t]]) add(n);
+    }
+    for (int f : need[p])
+      for (int n : pr.facets[f]) add(n);
+  }
+  gid_.assign(deformable.begin(), deformable.end());
+  deformable_ = static_cast<int>(gid_.size());
+  gid_.insert(gid_.end(), rigid.begin(), rigid.end());
+  lid_.clear();
+  for (int l = 0; l < size(); ++l) lid_[gid_[l]] = l;
+  std::vector<GO> dofs;
+  for (int l = 0; l < deformable_; ++l)
+    for (int c = 0; c < 3; ++c) dofs.push_back(fem::dof_gid(gid_[l], c));
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  map_ = Teuchos::rcp(new Map(invalid, dofs.data(), dofs.size(), 0, disc_.comm()));
+  import_ = Teuchos::rcp(new Import(disc_.owned_map(), map_));
+  X_ = Kokkos::View<double* [3], ExecSpace>("emc::contact_X", size());
+  auto Xh = Kokkos::create_mirror_view(X_);
+  for (int l = 0; l < size(); ++l)
+    for (int c = 0; c < 3; ++c)
+      Xh(l, c) = l < deformable_ ? m.X[3 * gid_[l] + c] : m.rigid_X[3 * (gid_[l] - m.num_nodes()) + c];
+  Kokkos::deep_copy(X_, Xh);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    LocalFacets& lf = facets_[p];
+    const int nf = static_cast<int>(need[p].size());
+    lf.nodes = Kokkos::View<int* [3], ExecSpace>("emc::local_facets", nf);
+    lf.id = Kokkos::View<int*, ExecSpace>("emc::local_facet_ids", nf);
+    auto nh = Kokkos::create_mirror_view(lf.nodes);
+    auto ih = Kokkos::create_mirror_view(lf.id);
+    lf.index.clear();
+    for (int k = 0; k < nf; ++k) {
+      ih(k) = need[p][k];
+      lf.index[need[p][k]] = k;
+      for (int a = 0; a < 3; ++a) nh(k, a) = lid_.at(pairs_[p].facets[need[p][k]][a]);
+    }
+    Kokkos::deep_copy(lf.nodes, nh);
+    Kokkos::deep_copy(lf.id, ih);
+  }
+  for (std::size_t p = 0; p < pairs_.size(); ++p) build_slaves(p);
+  traffic_.nodes = size();
+  traffic_.remote = static_cast<int>(import_->getNumRemoteIDs() / 3);
+}
+
+void ContactNodes::build_slaves(std::size_t p) {
+  const Pair& pr = pairs_[p];
+  const auto& mine = my_slaves_[p];
+  LocalSlaves& ls = slaves_[p];
+  ls.node = Kokkos::View<int*, ExecSpace>("emc::local_slaves", mine.size());
+  ls.start = Kokkos::View<int*, ExecSpace>("emc::local_slave_start", mine.size() + 1);
+  auto nh = Kokkos::create_mirror_view(ls.node);
+  auto sh = Kokkos::create_mirror_view(ls.start);
+  std::vector<std::array<int, 3>> tris;
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    nh(k) = lid_.at(mine[k]);
+    sh(k) = static_cast<int>(tris.size());
+    const auto j = std::lower_bound(pr.slaves.begin(), pr.slaves.end(), mine[k]) - pr.slaves.begin();
+    for (int t = pr.tri_start[j]; t < pr.tri_start[j + 1]; ++t) {
+      const auto& g = pr.slave_facets[pr.slave_tris[t]];
+      tris.push_back({lid_.at(g[0]), lid_.at(g[1]), lid_.at(g[2])});
+    }
+  }
+  sh(mine.size()) = static_cast<int>(tris.size());
+  ls.tri = Kokkos::View<int* [3], ExecSpace>("emc::local_slave_tris", tris.size());
+  auto th = Kokkos::create_mirror_view(ls.tri);
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int a = 0; a < 3; ++a) th(t, a) = tris[t][a];
+  Kokkos::deep_copy(ls.node, nh);
+  Kokkos::deep_copy(ls.start, sh);
+  Kokkos::deep_copy(ls.tri, th);
+}
+
+Positions ContactNodes::new_positions(const char* label) const {
+  return Positions(std::string(label), size());
+}
+
+void ContactNodes::positions(const Vector& u, Positions x) const {
+  Vector um(map_);
+  um.doImport(u, *import_, Tpetra::INSERT);
+  ++traffic_.imports;
+  traffic_.bytes_imported += static_cast<long long>(import_->getNumRemoteIDs()) * sizeof(double);
+  auto v = um.getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const auto X = X_;
+  const int nd = deformable_;
+  Kokkos::parallel_for(
+      "emcontact::contact::positions", Kokkos::RangePolicy<ExecSpace>(0, size()),
+      KOKKOS_LAMBDA(const int l) {
+        for (int c = 0; c < 3; ++c) x(l, c) = X(l, c) + (l < nd ? v(3 * l + c, 0) : 0.0);
+      });
+}
+
+Positions::HostMirror ContactNodes::host_positions(const Vector& u) const {
+  Positions x = new_positions("emc::contact_x");
+  positions(u, x);
+  return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
+}
+
+}  // namespace emc::contact

@@ -1,0 +1,298 @@
+// docs/THEORY.md §8: every per-active-slave loop of contact, run as its Kokkos kernel over many
+// random entries, against a plain host loop over the same entries calling the pointwise
+// functions of kernels/ directly: the results must agree bit for bit (each entry writes only
+// its own block), and the reductions to round-off of their sums.
+#include <gtest/gtest.h>
+
+#include <Kokkos_Core.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "emcontact/contact/active_kernels.hpp"
+#include "emcontact/contact/detection.hpp"
+#include "kernels/facet.hpp"
+#include "kernels/frictionless.hpp"
+
+namespace c = emc::contact;
+namespace k = emc::kernels;
+
+namespace {
+
+/// n entries, each with its own slave node and facet (4 contact nodes per entry): a facet near
+/// the plane z = 0, the slave near it (slightly in front or behind), positions at t_n and
+/// t_{n+1} a small random motion apart; g a random residual on 3 dofs per entry.
+struct Entries {
+  int n;
+  c::Refs refs;
+  c::Positions x0, x1;
+  Kokkos::View<double**, Kokkos::LayoutLeft, emc::ExecSpace> g;
+  std::vector<c::ActiveRef> host;
+
+  explicit Entries(int count, unsigned seed = 7) : n(count) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    refs = c::Refs("refs", n);
+    x0 = c::Positions("x0", 4 * n);
+    x1 = c::Positions("x1", 4 * n);
+    g = decltype(g)("g", 3 * n, 1);
+    auto r = Kokkos::create_mirror_view(refs);
+    auto a = Kokkos::create_mirror_view(x0);
+    auto b = Kokkos::create_mirror_view(x1);
+    auto gh = Kokkos::create_mirror_view(g);
+    for (int e = 0; e < n; ++e) {
+      const double base[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.3, 0.3, 0.02}};
+      for (int p = 0; p < 4; ++p)
+        for (int i = 0; i < 3; ++i) {
+          a(4 * e + p, i) = base[p][i] + 0.05 * u(rng) + 10 * e;
+          b(4 * e + p, i) = a(4 * e + p, i) + 0.01 * u(rng);
+        }
+      c::ActiveRef& ref = r(e);
+      ref.m[0] = 4 * e;
+      ref.m[1] = 4 * e + 1;
+      ref.m[2] = 4 * e + 2;
+      ref.s = 4 * e + 3;
+      for (int i = 0; i < 3; ++i) ref.dof[i] = 3 * e + i;
+      ref.xi[0] = 0.3 + 0.1 * u(rng);
+      ref.xi[1] = 0.3 + 0.1 * u(rng);
+      ref.edge = 1;
+      ref.closes = e % 3 == 0;
+      ref.frictionless = 1;
+      for (int i = 0; i < 3; ++i) gh(3 * e + i, 0) = u(rng);
+      host.push_back(ref);
+    }
+    Kokkos::deep_copy(refs, r);
+    Kokkos::deep_copy(x0, a);
+    Kokkos::deep_copy(x1, b);
+    Kokkos::deep_copy(g, gh);
+  }
+
+  void facet(const c::Positions& x, const c::ActiveRef& a, double xm[3][3]) const {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) xm[j][i] = h(a.m[j], i);
+  }
+  void slave(const c::Positions& x, const c::ActiveRef& a, double y[3]) const {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
+    for (int i = 0; i < 3; ++i) y[i] = h(a.s, i);
+  }
+  double gval(int dof) const {
+    return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g)(dof, 0);
+  }
+};
+
+constexpr int kEntries = 200;
+
+}  // namespace
+
+TEST(ActiveKernels, NormalForcesEqualAHostLoop) {
+  Entries e(kEntries);
+  c::Values fN("fN", e.n);
+  c::normal_forces(e.refs, e.x0, e.x1, e.g, fN);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), fN);
+  for (int q = 0; q < e.n; ++q) {
+    double xm0[3][3], xm1[3][3], xh[3][3];
+    e.facet(e.x0, e.host[q], xm0);
+    e.facet(e.x1, e.host[q], xm1);
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) xh[j][i] = 0.5 * (xm0[j][i] + xm1[j][i]);
+    const k::Facet f = k::facet(xh);
+    double s = 0;
+    for (int i = 0; i < 3; ++i) s += e.gval(e.host[q].dof[i]) * f.n[i];
+    EXPECT_EQ(h(q), s) << "entry " << q;
+  }
+}
+
+TEST(ActiveKernels, GapRangeAndBehindEqualAHostLoop) {
+  Entries e(kEntries);
+  double lo, hi;
+  c::gap_range(e.refs, e.x1, lo, hi);
+  Kokkos::View<int*, emc::ExecSpace> behind("behind", e.n);
+  c::behind_facets(e.refs, e.x1, behind);
+  auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), behind);
+  double l = 1e300, u = -1e300;
+  int n_behind = 0;
+  for (int q = 0; q < e.n; ++q) {
+    double xm[3][3], y[3], xi[2], gap;
+    e.facet(e.x1, e.host[q], xm);
+    e.slave(e.x1, e.host[q], y);
+    ASSERT_TRUE(k::facet_cpp(y, xm, xi, gap));
+    l = std::min(l, gap);
+    u = std::max(u, gap);
+    const int expect = gap < -c::gap_roundoff(1.0, y);
+    EXPECT_EQ(bh(q), expect) << "entry " << q;
+    n_behind += expect;
+  }
+  EXPECT_EQ(lo, l);
+  EXPECT_EQ(hi, u);
+  EXPECT_GT(n_behind, 0);  // the random set has nodes on both sides
+  EXPECT_LT(n_behind, e.n);
+}
+
+TEST(ActiveKernels, MasterPointsEqualAHostLoop) {
+  Entries e(kEntries);
+  c::Values3 target("target", e.n);
+  const double moved = c::master_points(e.refs, e.x1, target);
+  auto th = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), target);
+  double mx = 0;
+  for (int q = 0; q < e.n; ++q) {
+    double xm[3][3], y[3], N[3];
+    e.facet(e.x1, e.host[q], xm);
+    e.slave(e.x1, e.host[q], y);
+    k::facet_shape(e.host[q].xi, N);
+    for (int i = 0; i < 3; ++i) {
+      const double t = N[0] * xm[0][i] + N[1] * xm[1][i] + N[2] * xm[2][i];
+      EXPECT_EQ(th(q, i), t);
+      mx = std::max(mx, std::fabs(t - y[i]));
+    }
+  }
+  EXPECT_EQ(moved, mx);
+}
+
+TEST(ActiveKernels, FrictionlessProjectionsAndBlocksEqualAHostLoop) {
+  Entries e(kEntries);
+  c::Values3 xs1("xs1", e.n);
+  Kokkos::View<double* [2], emc::ExecSpace> xi("xi", e.n);
+  c::Values out("out", e.n);
+  auto xih = Kokkos::create_mirror_view(xi);
+  for (int q = 0; q < e.n; ++q)
+    for (int i = 0; i < 2; ++i) xih(q, i) = e.host[q].xi[i];
+  Kokkos::deep_copy(xi, xih);
+  c::frictionless_projections(e.refs, e.x0, e.x1, xs1, xi, out);
+  Kokkos::View<k::FrictionlessBlocks*, emc::ExecSpace> blocks("blocks", e.n);
+  c::frictionless_blocks(e.refs, e.x0, e.x1, e.g, blocks);
+  auto xsh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xs1);
+  Kokkos::deep_copy(xih, xi);
+  auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
+  auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), blocks);
+  for (int q = 0; q < e.n; ++q) {
+    const auto& a = e.host[q];
+    double xm0[3][3], xm1[3][3], y0[3], y1[3], z[2] = {a.xi[0], a.xi[1]}, gs[3];
+    e.facet(e.x0, a, xm0);
+    e.facet(e.x1, a, xm1);
+    e.slave(e.x0, a, y0);
+    e.slave(e.x1, a, y1);
+    double yb[3] = {y1[0], y1[1], y1[2]};
+    const double o = k::frictionless_project(y0, yb, xm0, xm1, z, a.closes != 0);
+    EXPECT_EQ(oh(q), o);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(xsh(q, i), yb[i]);
+    EXPECT_EQ(xih(q, 0), z[0]);
+    EXPECT_EQ(xih(q, 1), z[1]);
+    for (int i = 0; i < 3; ++i) gs[i] = e.gval(a.dof[i]);
+    k::FrictionlessBlocks b;
+    k::frictionless_blocks(y0, y1, xm0, xm1, a.xi, gs, b, a.closes != 0);
+    EXPECT_EQ(0, std::memcmp(&b, &bh(q), sizeof b)) << "entry " << q;
+  }
+}
+
+TEST(ActiveKernels, ClosureTermsEqualAHostLoop) {
+  Entries e(kEntries);
+  c::Values3 F("F", e.n), wn("wn", e.n), N1("N1", e.n);
+  auto Fh = Kokkos::create_mirror_view(F);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int q = 0; q < e.n; ++q)
+    for (int i = 0; i < 3; ++i) Fh(q, i) = u(rng);
+  Kokkos::deep_copy(F, Fh);
+  const c::ClosureTerms t = c::closure_terms(e.refs, e.x0, e.x1, F, wn, N1);
+  auto wh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), wn);
+  auto Nh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), N1);
+  double work = 0, roundoff = 0, scale = 0;
+  int pushing = 0;
+  for (int q = 0; q < e.n; ++q) {
+    const auto& a = e.host[q];
+    double xm0[3][3], xm1[3][3], y0[3], y1[3], N[3];
+    e.facet(e.x0, a, xm0);
+    e.facet(e.x1, a, xm1);
+    e.slave(e.x0, a, y0);
+    e.slave(e.x1, a, y1);
+    k::facet_shape(a.xi, N);
+    for (int c3 = 0; c3 < 3; ++c3) {
+      double rel = y1[c3] - y0[c3];
+      for (int i = 0; i < 3; ++i) rel -= N[i] * (xm1[i][c3] - xm0[i][c3]);
+      work += Fh(q, c3) * rel;
+      scale += std::fabs(Fh(q, c3) * rel);
+    }
+    roundoff += (std::fabs(Fh(q, 0)) + std::fabs(Fh(q, 1)) + std::fabs(Fh(q, 2))) *
+                c::gap_roundoff(a.edge, y1);
+    double xi1[2], gap, M[3];
+    ASSERT_TRUE(k::facet_cpp(y1, xm1, xi1, gap));
+    const k::Facet f1 = k::facet(xm1);
+    const double w = std::max(0.0, Fh(q, 0) * f1.n[0] + Fh(q, 1) * f1.n[1] + Fh(q, 2) * f1.n[2]);
+    pushing += w > 0;
+    k::facet_shape(xi1, M);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_EQ(wh(q, i), w * f1.n[i]);
+      EXPECT_EQ(Nh(q, i), M[i]);
+    }
+  }
+  // sums: a parallel reduction may add in another order (threads): round-off of the terms
+  EXPECT_NEAR(t.work, work, 1e-14 * scale);
+  EXPECT_NEAR(t.roundoff, roundoff, 1e-14 * roundoff);
+  EXPECT_GT(pushing, 0);
+}
+
+// docs/THEORY.md §6.3 inside a kernel: entered_facet for many slave nodes over a grid of
+// facets, run in a parallel_for, against the same calls in a host loop.
+TEST(ActiveKernels, EnteredFacetInAKernelEqualsAHostLoop) {
+  // a 20 x 20 grid of squares in z = 0 (two triangles each, normals +z); slaves crossing it
+  const int m = 20, nn = (m + 1) * (m + 1), ns = 500;
+  std::vector<std::array<int, 3>> facets;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      const int a = j * (m + 1) + i;
+      facets.push_back({a, a + 1, a + m + 2});
+      facets.push_back({a, a + m + 2, a + m + 1});
+    }
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> x0(3 * (nn + ns)), x1;
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i <= m; ++i) {
+      const int a = j * (m + 1) + i;
+      x0[3 * a] = i;
+      x0[3 * a + 1] = j;
+      x0[3 * a + 2] = 0.01 * (u(rng) - 0.5);
+    }
+  x1 = x0;
+  for (int s = 0; s < ns; ++s) {
+    const int n = nn + s;
+    x0[3 * n] = m * u(rng);
+    x0[3 * n + 1] = m * u(rng);
+    x0[3 * n + 2] = 0.05 * u(rng);
+    x1[3 * n] = x0[3 * n] + 0.01 * (u(rng) - 0.5);
+    x1[3 * n + 1] = x0[3 * n + 1] + 0.01 * (u(rng) - 0.5);
+    x1[3 * n + 2] = -0.1 * u(rng);
+  }
+  c::Pair pair;
+  pair.facets = facets;
+  pair.dmax = 0.5;
+  pair.edge = 1;
+  const c::EntryRule rule = c::entry_rule(pair);
+  const c::FacetGrid grid(facets, x1, pair.dmax);
+  using Unmanaged = Kokkos::MemoryTraits<Kokkos::Unmanaged>;
+  const Kokkos::View<const int* [3], Kokkos::HostSpace, Unmanaged> fv(
+      reinterpret_cast<const int*>(facets.data()), facets.size());
+  const Kokkos::View<const double* [3], Kokkos::HostSpace, Unmanaged> v0(x0.data(), nn + ns),
+      v1(x1.data(), nn + ns);
+  Kokkos::View<c::Hit*, Kokkos::HostSpace> hits("hits", ns);
+  const c::FacetGrid* gp = &grid;
+  Kokkos::parallel_for(
+      "test::entered_facet", Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, ns),
+      [=](const int s) {
+        const double n_s[3] = {0, 0, -1};
+        hits(s) = c::entered_facet(*gp, fv, v0, v1, nn + s, n_s, rule);
+      });
+  int entered = 0;
+  for (int s = 0; s < ns; ++s) {
+    const double n_s[3] = {0, 0, -1};
+    const c::Hit h = c::entered_facet(grid, pair, x0, x1, nn + s, n_s, rule);
+    EXPECT_EQ(hits(s).facet, h.facet);
+    EXPECT_EQ(hits(s).gap, h.gap);
+    EXPECT_EQ(hits(s).xi[0], h.xi[0]);
+    EXPECT_EQ(hits(s).xi[1], h.xi[1]);
+    entered += h.facet >= 0;
+  }
+  EXPECT_GT(entered, ns / 2);  // most cross the plane within the step
+}
