@@ -3,8 +3,8 @@
 // (2/dt^2) M + K (ALGORITHM.md §1):
 //   g_A = (2/dt^2) M_AB (u_{B,n+1} - u_{B,n}) - (2/dt) M_AB V_{B,n} + f_int_A - f_ext_A.
 #include "kernels/em_tet4.hpp"
-#include "kernels/math.hpp"
 #include "kernels/mass_tet4.hpp"
+#include "kernels/math.hpp"
 
 namespace emc::kernels {
 
@@ -20,10 +20,10 @@ struct ElementState {
 /// 2 mu) |G_A| sum_B |u_B| |G_B|, weighted 1e-3: on the stiff thin disks of three_disks.xml
 /// the residual stagnates at about 1.5e-4 of this bound times 100 eps, so the floor
 /// 100 eps |scale| of the §1 Newton tolerance sits about 7 times above the measured noise).
-KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m,
-                                        double rho, const double grav[3], Integrator integ,
-                                        double dt, const ElementState& s, double r[12],
-                                        double (*A)[12], double* scale) {
+KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m, double rho,
+                                        const double grav[3], Integrator integ, double dt,
+                                        const ElementState& s, double r[12], double (*A)[12],
+                                        double* scale) {
   em_tet4(G, Ve, m, integ, s.u0, s.u1, r, A);  // r = f_int for now
   double du[4][3], Mdu[4][3], MV[4][3];
   for (int a = 0; a < 4; ++a)
@@ -34,8 +34,8 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
   double gnorm[4], ug = 0;
   for (int a = 0; a < 4; ++a) {
     gnorm[a] = kernels::sqrt(G[a][0] * G[a][0] + G[a][1] * G[a][1] + G[a][2] * G[a][2]);
-    const double un = kernels::sqrt(s.u1[a][0] * s.u1[a][0] + s.u1[a][1] * s.u1[a][1] +
-                                                 s.u1[a][2] * s.u1[a][2]);
+    const double un =
+        kernels::sqrt(s.u1[a][0] * s.u1[a][0] + s.u1[a][1] * s.u1[a][1] + s.u1[a][2] * s.u1[a][2]);
     ug += un * gnorm[a];
   }
   const double stiff = 1e-3 * Ve * (kernels::fabs(m.lambda) + 2 * m.mu) * ug;
@@ -45,10 +45,8 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
       const double fint = r[3 * a + i];
       r[3 * a + i] = c2 * Mdu[a][i] - c1 * MV[a][i] + fint - fext;
       if (scale)
-        scale[3 * a + i] = kernels::fabs(c2 * Mdu[a][i]) +
-                           kernels::fabs(c1 * MV[a][i]) +
-                           kernels::fabs(fint) + kernels::fabs(fext) +
-                           stiff * gnorm[a];
+        scale[3 * a + i] = kernels::fabs(c2 * Mdu[a][i]) + kernels::fabs(c1 * MV[a][i]) +
+                           kernels::fabs(fint) + kernels::fabs(fext) + stiff * gnorm[a];
     }
   if (A == nullptr) return;
   for (int a = 0; a < 4; ++a)

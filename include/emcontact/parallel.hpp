@@ -1,7 +1,6 @@
 #pragma once
 // Small collective helpers shared by the modules.
 #include <Teuchos_CommHelpers.hpp>
-
 #include <algorithm>
 #include <vector>
 

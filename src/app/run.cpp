@@ -198,8 +198,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   const auto& disc = *sim->disc;
   sim->contact =
       std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
-  if (opt.restart.empty())
-    sim->contact->check_initial_penetration(opt.input);
+  if (opt.restart.empty()) sim->contact->check_initial_penetration(opt.input);
   check_contact_scales(sim->model, sim->contact->pairs(), opt.input);
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
   sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,

@@ -1,6 +1,7 @@
 // docs/THEORY.md §6.3 (activation by the facet entered over the step) and §6.6 (no slave node
 // starts inside its master), on the rank's contact nodes.
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <cstdio>
 
 #include "emcontact/contact/contact.hpp"
@@ -82,6 +83,8 @@ void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
 
 std::vector<Active> Contact::detect(Positions x0, Positions x1,
                                     const std::vector<Active>& active) const {
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: activation");
+  Teuchos::TimeMonitor tm(*timer);
   Kokkos::View<int*, ExecSpace> busy("emc::busy", nodes_.size());
   auto bh = Kokkos::create_mirror_view(busy);
   for (const auto& a : active) bh(nodes_.local(a.slave)) = 1;
@@ -107,8 +110,8 @@ std::vector<Active> Contact::detect_pair(int p, Positions x0, Positions x1,
   if (ns == 0 || lf.size() == 0) return {};
   const PairGrid pg(lf, x1, pr.dmax);
   Kokkos::View<Active*, ExecSpace> hit("emc::detect_hits", ns);
-  entering_nodes(*pg.grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr), laws_[p]->activation_weight(),
-                 laws_[p]->clamps(pr), pr.edge, p, hit);
+  entering_nodes(*pg.grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr),
+                 laws_[p]->activation_weight(), laws_[p]->clamps(pr), pr.edge, p, hit);
   auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hit);
   auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);
   std::vector<Active> found;

@@ -140,7 +140,8 @@ ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Val
         for (int c = 0; c < 3; ++c) wn(k, c) = N1(k, c) = 0;
         if (!kernels::facet_cpp(y1, xm1, xi1, gap)) return;
         const kernels::Facet f1 = kernels::facet(xm1);
-        const double w = kernels::fmax(0.0, F(k, 0) * f1.n[0] + F(k, 1) * f1.n[1] + F(k, 2) * f1.n[2]);
+        const double w =
+            kernels::fmax(0.0, F(k, 0) * f1.n[0] + F(k, 1) * f1.n[1] + F(k, 2) * f1.n[2]);
         double M[3];
         kernels::facet_shape(xi1, M);
         for (int c = 0; c < 3; ++c) {

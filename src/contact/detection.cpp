@@ -14,7 +14,7 @@ Hit entered_facet(const FacetGrid& grid1, const Pair& p, const std::vector<doubl
   using Unmanaged = Kokkos::MemoryTraits<Kokkos::Unmanaged>;
   const Kokkos::View<const int* [3], Kokkos::HostSpace, Unmanaged> facets(
       reinterpret_cast<const int*>(p.facets.data()), p.facets.size());
-  const Kokkos::View<const double* [3], Kokkos::HostSpace, Unmanaged> v0(x0.data(), x0.size() / 3),
+  const Kokkos::View<const double*[3], Kokkos::HostSpace, Unmanaged> v0(x0.data(), x0.size() / 3),
       v1(x1.data(), x1.size() / 3);
   return entered_facet(grid1, facets, v0, v1, s, ns, rule);
 }

@@ -1,6 +1,7 @@
 // Frictionless contact (ALGORITHM.md §5): du_s = N du_m + T dq at n+1/2 with the exact right
 // factor Pt and the variation X of P^T; after every Newton update the slave is projected back
 // (update steps 2-3), moving on to a neighbouring facet beyond the hysteresis tol_f.
+#include <Teuchos_TimeMonitor.hpp>
 #include <memory>
 
 #include "emcontact/contact/contact.hpp"
@@ -17,8 +18,8 @@ class Frictionless final : public Law {
   double activation_weight() const override { return 0.5; }
   bool clamps(const Pair&) const override { return true; }
   bool iterate_dependent() const override { return true; }
-  void rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
-            const Matrix* A, LawRows& out) const override;
+  void rows(const LawState& s, const std::vector<Active>& active, const Vector* g, const Matrix* A,
+            LawRows& out) const override;
   void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
     after_update(s, active, u1);
   }
@@ -93,6 +94,8 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
   contact::frictionless_blocks(s.contact.refs(entries), s.x0, s.x1,
                                g->getLocalViewDevice(Tpetra::Access::ReadOnly), blocks);
   auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), blocks);
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");
+  Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the scatter into P's rows)
   Vector diag(A->getRowMap());
   A->getLocalDiagCopy(diag);
   auto dv = diag.getLocalViewHost(Tpetra::Access::ReadOnly);
@@ -126,7 +129,8 @@ Hit next_facet_of(const Contact& contact, const Active& a, const Positions::Host
   double n_s[3];
   slave_normal(ls, k, xh, n_s);
   Hit h = next_facet(grid, &x[3 * sl], n_s, entry_rule(pr));
-  if (h.facet >= 0) h.facet = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id)(h.facet);
+  if (h.facet >= 0)
+    h.facet = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id)(h.facet);
   return h;
 }
 

@@ -2,6 +2,7 @@
 // three dofs become dummies with D = beta = tr(A_ss)/3 (eq. 44). With `close gap` (docs/THEORY.md
 // §7.2) Newton starts the slave on its master point, where du_s = N du_m keeps it.
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/law.hpp"
@@ -18,8 +19,8 @@ class FullStick final : public Law {
   // clamped xi drags it along the facet)
   bool clamps(const Pair& p) const override { return !p.close_gap; }
   bool iterate_dependent() const override { return false; }
-  void rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
-            const Matrix* A, LawRows& out) const override;
+  void rows(const LawState& s, const std::vector<Active>& active, const Vector* g, const Matrix* A,
+            LawRows& out) const override;
   void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override;
   void after_update(const LawState&, std::vector<Active>&, Vector&) const override {}
   bool releases(const Active&, double fN) const override { return fN < 0; }
@@ -28,6 +29,8 @@ class FullStick final : public Law {
 // ALGORITHM.md §3-§4: du_s = N du_m; the slave's own column of P is zero (three dummies).
 void FullStick::rows(const LawState& s, const std::vector<Active>& active, const Vector*,
                      const Matrix* A, LawRows& out) const {
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");
+  Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the rows of P)
   const auto& pairs = s.contact.pairs();
   std::vector<GO> dummies;
   for (const auto& a : active) {

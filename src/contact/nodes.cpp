@@ -5,6 +5,8 @@
 #include <array>
 #include <set>
 
+#include <Teuchos_TimeMonitor.hpp>
+
 #include "emcontact/parallel.hpp"
 
 namespace emc::contact {
@@ -33,7 +35,8 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
   const int rank = disc_.comm()->getRank();
   const auto& overlap = *disc_.overlap_map();
   const auto holds = [&](int n) {
-    return overlap.getLocalElement(fem::dof_gid(n, 0)) != Tpetra::Details::OrdinalTraits<LO>::invalid();
+    return overlap.getLocalElement(fem::dof_gid(n, 0)) !=
+           Tpetra::Details::OrdinalTraits<LO>::invalid();
   };
   for (const auto& p : pairs_) {
     my_slaves_.emplace_back();
@@ -50,7 +53,8 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
 
 // The box of my slave nodes of each pair over the step (x at u0 and at u1), grown by the pair's
 // max penetration and mean facet size (the reach of Newton's iterates and of §5 step 2).
-std::vector<std::vector<double>> ContactNodes::slave_boxes(const Vector& u0, const Vector& u1) const {
+std::vector<std::vector<double>> ContactNodes::slave_boxes(const Vector& u0,
+                                                           const Vector& u1) const {
   const auto& m = disc_.model();
   const auto& map = *disc_.owned_map();
   auto v0 = u0.getLocalViewHost(Tpetra::Access::ReadOnly);
@@ -141,6 +145,8 @@ void ContactNodes::close_chains(std::vector<std::vector<int>>& need,
 }
 
 void ContactNodes::select(const Vector& u0, const Vector& u1, const ActiveIndex& index) {
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: node selection");
+  Teuchos::TimeMonitor tm(*timer);
   auto need = facets_in_reach(u0, u1);
   close_chains(need, index);
   build(need);
@@ -177,7 +183,8 @@ void ContactNodes::build(const std::vector<std::vector<int>>& need) {
   auto Xh = Kokkos::create_mirror_view(X_);
   for (int l = 0; l < size(); ++l)
     for (int c = 0; c < 3; ++c)
-      Xh(l, c) = l < deformable_ ? m.X[3 * gid_[l] + c] : m.rigid_X[3 * (gid_[l] - m.num_nodes()) + c];
+      Xh(l, c) =
+          l < deformable_ ? m.X[3 * gid_[l] + c] : m.rigid_X[3 * (gid_[l] - m.num_nodes()) + c];
   Kokkos::deep_copy(X_, Xh);
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     LocalFacets& lf = facets_[p];
@@ -212,7 +219,8 @@ void ContactNodes::build_slaves(std::size_t p) {
   for (std::size_t k = 0; k < mine.size(); ++k) {
     nh(k) = lid_.at(mine[k]);
     sh(k) = static_cast<int>(tris.size());
-    const auto j = std::lower_bound(pr.slaves.begin(), pr.slaves.end(), mine[k]) - pr.slaves.begin();
+    const auto j =
+        std::lower_bound(pr.slaves.begin(), pr.slaves.end(), mine[k]) - pr.slaves.begin();
     for (int t = pr.tri_start[j]; t < pr.tri_start[j + 1]; ++t) {
       const auto& g = pr.slave_facets[pr.slave_tris[t]];
       tris.push_back({lid_.at(g[0]), lid_.at(g[1]), lid_.at(g[2])});

@@ -30,6 +30,25 @@ void MaskedReduction::set_keep(RCP<const Vector> keep) {
 // The graph is copied (local arrays, the same maps, importer and exporter) so that the
 // reduced matrix does not share the FE graph, which switches between owned and owned+shared
 // rows at every assembly.
+namespace {
+
+// The position of each row's diagonal entry in the values (-1 if none): a kernel in a free
+// function (device code is never in a private member).
+template <class Rows, class Cols, class LocalMap>
+void diagonal_positions(const Rows rows, const Cols cols, const LocalMap col_map,
+                        const LocalMap row_map, const Kokkos::View<long*, ExecSpace> diag_pos) {
+  Kokkos::parallel_for(
+      "emcontact::linalg::masked_diagonal", Kokkos::RangePolicy<ExecSpace>(0, diag_pos.extent(0)),
+      KOKKOS_LAMBDA(const int i) {
+        const LO diag_col = col_map.getLocalElement(row_map.getGlobalElement(i));
+        diag_pos(i) = -1;
+        for (auto j = rows(i); j < rows(i + 1); ++j)
+          if (cols(j) == diag_col) diag_pos(i) = static_cast<long>(j);
+      });
+}
+
+}  // namespace
+
 void MaskedReduction::copy_graph(const Matrix& A) {
   const auto& g = *A.getCrsGraph();
   const auto lcl = g.getLocalGraphDevice();
@@ -41,17 +60,8 @@ void MaskedReduction::copy_graph(const Matrix& A) {
   Kokkos::deep_copy(cols, lcl.entries);
   // the position of each row's diagonal entry in the values, found once
   diag_pos_ = Kokkos::View<long*, ExecSpace>("emc::masked::diag_pos", rows.extent(0) - 1);
-  const auto diag_pos = diag_pos_;
-  const auto col_map = g.getColMap()->getLocalMap();
-  const auto row_map = g.getRowMap()->getLocalMap();
-  Kokkos::parallel_for(
-      "emcontact::linalg::masked_diagonal", Kokkos::RangePolicy<ExecSpace>(0, diag_pos.extent(0)),
-      KOKKOS_LAMBDA(const int i) {
-        const LO diag_col = col_map.getLocalElement(row_map.getGlobalElement(i));
-        diag_pos(i) = -1;
-        for (auto j = rows(i); j < rows(i + 1); ++j)
-          if (cols(j) == diag_col) diag_pos(i) = static_cast<long>(j);
-      });
+  diagonal_positions(rows, cols, g.getColMap()->getLocalMap(), g.getRowMap()->getLocalMap(),
+                     diag_pos_);
   auto copy = rcp(new Graph(g.getRowMap(), g.getColMap(), rows, cols));
   copy->expertStaticFillComplete(g.getDomainMap(), g.getRangeMap(), g.getImporter(),
                                  g.getExporter());

@@ -309,7 +309,8 @@ void StructuredReduction::find_positions(const Matrix& A, const std::vector<char
 // their own order within a position), seg the start of each position's run. A kernel over the
 // runs then adds each position's contributions in a fixed order, with no two threads on one
 // value: the same bits on any number of threads (docs/THEORY.md §8).
-void StructuredReduction::segments(const std::vector<int>& pos, Kokkos::View<int*, ExecSpace>& order,
+void StructuredReduction::segments(const std::vector<int>& pos,
+                                   Kokkos::View<int*, ExecSpace>& order,
                                    Kokkos::View<int*, ExecSpace>& seg) {
   std::vector<int> o(pos.size()), starts;
   for (std::size_t k = 0; k < o.size(); ++k) o[k] = static_cast<int>(k);

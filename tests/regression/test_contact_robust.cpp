@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "body_momenta.hpp"
-#include "support/replicate.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "emcontact/contact/pairs.hpp"
 #include "emcontact/mesh/body_mesh.hpp"
 #include "kernels/facet.hpp"
+#include "support/replicate.hpp"
 
 using emc::testing::body_momenta;
 
@@ -57,7 +57,8 @@ double penetration(const emc::app::Simulation& sim, const emc::contact::Pair& p,
 
 /// x of each body's node centroid and z of body 1's (collective).
 void centroids(const emc::app::Simulation& sim, std::vector<double>& xc, double& z1) {
-  const auto x = emc::contact::positions(sim.model, emc::testing::replicate(*sim.disc, *sim.state.u));
+  const auto x =
+      emc::contact::positions(sim.model, emc::testing::replicate(*sim.disc, *sim.state.u));
   xc.assign(sim.model.bodies.size(), 0.0);
   for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
     const auto& body = sim.model.bodies[b];
@@ -113,7 +114,8 @@ CaseRun run_case(const std::string& xml, std::vector<std::string> sets) {
     r.unreported += all != rep.contact.active;
     last_active = rep.contact.active;
     r.tension += rep.contact.normal_force_min < 0 && rep.contact.reactivated == 0;
-    const auto x = emc::contact::positions(sim->model, emc::testing::replicate(*sim->disc, *sim->state.u));
+    const auto x =
+        emc::contact::positions(sim->model, emc::testing::replicate(*sim->disc, *sim->state.u));
     for (const auto& p : sim->contact->pairs())
       r.depth = std::max(r.depth, penetration(*sim, p, x));
     const auto m = sim->disc->monitors(*sim->state.u, *sim->state.V);

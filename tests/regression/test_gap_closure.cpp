@@ -63,7 +63,8 @@ CaseRun run_case(std::vector<std::string> sets, const char* xml = "bars.xml") {
       if (r.t_first < 0) r.t_first = t - rep.dt;  // the step that activated
       r.t_last = t;
     }
-    const auto x = emc::contact::positions(sim->model, emc::testing::replicate(*sim->disc, *sim->state.u));
+    const auto x =
+        emc::contact::positions(sim->model, emc::testing::replicate(*sim->disc, *sim->state.u));
     double worst = 0;
     int kept = 0;
     for (const auto& a : sim->state.active) {

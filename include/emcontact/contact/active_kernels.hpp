@@ -12,13 +12,13 @@ namespace emc::contact {
 
 /// An active entry in the numbering of the rank's contact nodes, for kernels.
 struct ActiveRef {
-  int s = -1;                    ///< contact-node index of the slave
-  int m[3] = {-1, -1, -1};       ///< of its facet's nodes
-  int dof[3] = {-1, -1, -1};     ///< the slave's dofs in the owned map (local ids)
-  double xi[2] = {0, 0};         ///< frozen (stick) or current (frictionless) point on the facet
-  double edge = 0;               ///< the pair's mean facet size (docs/THEORY.md §7.2 round-off)
-  int closes = 0;                ///< the gap is closed (docs/THEORY.md §7.2)
-  int frictionless = 0;          ///< the pair's law (§4 or §5)
+  int s = -1;                 ///< contact-node index of the slave
+  int m[3] = {-1, -1, -1};    ///< of its facet's nodes
+  int dof[3] = {-1, -1, -1};  ///< the slave's dofs in the owned map (local ids)
+  double xi[2] = {0, 0};      ///< frozen (stick) or current (frictionless) point on the facet
+  double edge = 0;            ///< the pair's mean facet size (docs/THEORY.md §7.2 round-off)
+  int closes = 0;             ///< the gap is closed (docs/THEORY.md §7.2)
+  int frictionless = 0;       ///< the pair's law (§4 or §5)
 };
 
 using Refs = Kokkos::View<ActiveRef*, ExecSpace>;

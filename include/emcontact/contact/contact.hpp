@@ -64,8 +64,7 @@ class Contact {
   /// fixed, or the node's own row of P if it is an active slave (chains, §3; a cycle is cut).
   /// xh: positions at n+1/2 (frictionless chains add T dq there; empty: P is built without).
   void expand_node(int node, int c, double w, const ActiveIndex& index,
-                   const Positions::HostMirror& xh, std::vector<int>& path,
-                   linalg::PRow& r) const;
+                   const Positions::HostMirror& xh, std::vector<int>& path, linalg::PRow& r) const;
 
   /// beta = tr(A_ss)/3 for each dummy's slave (eq. 44), from A's diagonal.
   std::vector<std::pair<GO, double>> dummy_values(const Matrix& A,

@@ -106,8 +106,8 @@ Hit entered_facet(const FacetGrid& grid1, const Pair& p, const std::vector<doubl
 /// The facet a frictionless slave at y (mid-point configuration of grid) moves on to when it
 /// leaves its facet (§5 step 2): among the facets facing it (normal ns) whose CPP is inside,
 /// the smallest |g_N|, lowest id on ties; facet = -1 if none.
-KOKKOS_INLINE_FUNCTION Hit next_facet(const FacetGrid& grid, const double y[3],
-                                      const double ns[3], const EntryRule& rule) {
+KOKKOS_INLINE_FUNCTION Hit next_facet(const FacetGrid& grid, const double y[3], const double ns[3],
+                                      const EntryRule& rule) {
   Hit best;
   grid.for_each_candidate(y, [&](const Hit& h, double out) {
     if (out > rule.strict || !(detail::dot3(grid.metric(h.facet).f.n, ns) < -rule.facing)) return;

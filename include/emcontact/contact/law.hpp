@@ -26,9 +26,9 @@ struct LawState {
 
 /// The elimination's rows a law contributes.
 struct LawRows {
-  std::vector<linalg::PRow> rows;     ///< rows of P
-  std::vector<linalg::PRow> pt_rows;  ///< rows of Pt that differ from P's
-  std::vector<linalg::Entry> X;       ///< the variation of P^T
+  std::vector<linalg::PRow> rows;           ///< rows of P
+  std::vector<linalg::PRow> pt_rows;        ///< rows of Pt that differ from P's
+  std::vector<linalg::Entry> X;             ///< the variation of P^T
   std::vector<std::pair<GO, double>> beta;  ///< (dummy dof, beta) from the Newton matrix
   std::vector<GO> dummies;  ///< dummies whose beta follows A while P is kept (eq. 44)
 };

@@ -33,9 +33,9 @@ struct LocalFacets {
 /// A pair's slave nodes owned by this rank and the slave-surface triangles around each (for its
 /// normal), in contact-node indices: triangles tri(start(k)) .. tri(start(k + 1) - 1) of node k.
 struct LocalSlaves {
-  Kokkos::View<int*, ExecSpace> node;      ///< contact-node index of my k-th slave
-  Kokkos::View<int*, ExecSpace> start;     ///< CSR offsets into tri
-  Kokkos::View<int* [3], ExecSpace> tri;   ///< contact-node indices
+  Kokkos::View<int*, ExecSpace> node;     ///< contact-node index of my k-th slave
+  Kokkos::View<int*, ExecSpace> start;    ///< CSR offsets into tri
+  Kokkos::View<int* [3], ExecSpace> tri;  ///< contact-node indices
   int size() const { return static_cast<int>(node.extent(0)); }
 };
 

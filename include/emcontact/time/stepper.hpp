@@ -67,7 +67,7 @@ class Stepper {
   State& s_;
   double dt_, end_;
   int max_cuts_, grow_after_;
-  std::unique_ptr<contact::ActiveSetLoop> loop_;  ///< with contact pairs only
+  std::unique_ptr<contact::ActiveSetLoop> loop_;    ///< with contact pairs only
   std::unique_ptr<EnergyRestoration> restoration_;  ///< with `close gap` pairs only
   Teuchos::RCP<Vector> closure_p_;                  ///< the step's impulse direction (§7.4)
   contact::ClosureWork closure_work_;               ///< the step's contact work W_c (§7.4)

@@ -274,16 +274,16 @@ TEST(ActiveKernels, EnteredFacetInAKernelEqualsAHostLoop) {
   using Unmanaged = Kokkos::MemoryTraits<Kokkos::Unmanaged>;
   const Kokkos::View<const int* [3], Kokkos::HostSpace, Unmanaged> fv(
       reinterpret_cast<const int*>(facets.data()), facets.size());
-  const Kokkos::View<const double* [3], Kokkos::HostSpace, Unmanaged> v0(x0.data(), nn + ns),
+  const Kokkos::View<const double*[3], Kokkos::HostSpace, Unmanaged> v0(x0.data(), nn + ns),
       v1(x1.data(), nn + ns);
   Kokkos::View<c::Hit*, Kokkos::HostSpace> hits("hits", ns);
   const c::FacetGrid* gp = &grid;
-  Kokkos::parallel_for(
-      "test::entered_facet", Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, ns),
-      [=](const int s) {
-        const double n_s[3] = {0, 0, -1};
-        hits(s) = c::entered_facet(*gp, fv, v0, v1, nn + s, n_s, rule);
-      });
+  Kokkos::parallel_for("test::entered_facet",
+                       Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, ns),
+                       [=](const int s) {
+                         const double n_s[3] = {0, 0, -1};
+                         hits(s) = c::entered_facet(*gp, fv, v0, v1, nn + s, n_s, rule);
+                       });
   int entered = 0;
   for (int s = 0; s < ns; ++s) {
     const double n_s[3] = {0, 0, -1};
