@@ -1,8 +1,7 @@
 // The assembly driver: launches the element kernels of kernels/ over my elements (Kokkos
-// parallel loops, one per colour of element chunks (docs/THEORY.md §8) or one with atomic adds:
-// Solver/Assembly/scatter) and
-// scatters into the owned+shared rows of the FECrsMatrix and of overlap vectors, which Tpetra
-// then exports to their owners.
+// parallel loops, one per colour of element chunks, docs/THEORY.md §8, or one with atomic adds:
+// Solver/Assembly/scatter) and scatters into the owned+shared rows of the FECrsMatrix and of
+// overlap vectors, which Tpetra then exports to their owners.
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 
