@@ -47,8 +47,12 @@ static void BM_EmTet4(benchmark::State& state) {
 }
 BENCHMARK(BM_EmTet4);
 
-static void BM_Assembly(benchmark::State& state) {
-  const emc::fem::Model m = emc::test::box_model(static_cast<int>(state.range(0)));
+/// The assembly of a box of n^3 cubes (6 n^3 tets) with the scatter `how` (Solver/Assembly/
+/// scatter): BM_Assembly one loop per element colour with plain adds (the default),
+/// BM_AssemblyAtomic one loop over all elements with atomic adds.
+static void assembly_bench(benchmark::State& state, emc::fem::Scatter how) {
+  emc::fem::Model m = emc::test::box_model(static_cast<int>(state.range(0)));
+  m.scatter = how;
   emc::fem::Discretization disc(m, Tpetra::getDefaultComm());
   emc::Vector u0(disc.owned_map()), V0(disc.owned_map()), u1(disc.owned_map()), r(disc.owned_map()),
       sc(disc.owned_map());
@@ -59,10 +63,18 @@ static void BM_Assembly(benchmark::State& state) {
   disc.assemble(u0, V0, u1, 1e-3, &A, r, &sc);  // first call finds the CRS offsets once
   for (auto _ : state) disc.assemble(u0, V0, u1, 1e-3, &A, r, &sc);
   state.counters["tets"] = m.num_tets();
+  state.counters["colours"] = disc.colouring().colours();
   state.counters["tets_per_s"] =
       benchmark::Counter(double(state.iterations()) * m.num_tets(), benchmark::Counter::kIsRate);
 }
+static void BM_Assembly(benchmark::State& state) {
+  assembly_bench(state, emc::fem::Scatter::coloured);
+}
+static void BM_AssemblyAtomic(benchmark::State& state) {
+  assembly_bench(state, emc::fem::Scatter::atomic);
+}
 BENCHMARK(BM_Assembly)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AssemblyAtomic)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 
 /// A bumpy surface of 2 n^2 facets (n = 224: about 100k) and 100k points near it.
 struct BumpySurface {

@@ -1,15 +1,67 @@
 // The assembly driver: launches the element kernels of kernels/ over my elements (Kokkos
-// parallel_for / parallel_reduce) and scatters with atomic adds into the owned+shared rows of
-// the FECrsMatrix and of overlap vectors, which Tpetra then exports to their owners.
+// parallel loops, one per colour of element chunks, docs/THEORY.md §9, or one with atomic adds:
+// Solver/Assembly/scatter) and scatters into the owned+shared rows of the FECrsMatrix and of
+// overlap vectors, which Tpetra then exports to their owners.
 #include <Teuchos_CommHelpers.hpp>
-
 #include <algorithm>
 
-#include "emcontact/fem/discretization.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/fem/discretization.hpp"
+#include "emcontact/fem/element_loop.hpp"
 #include "kernels/newton_tet4.hpp"
 
 namespace emc::fem {
+namespace {
+
+using ConstDev =
+    decltype(std::declval<const Vector&>().getLocalViewDevice(Tpetra::Access::ReadOnly));
+using Dev = decltype(std::declval<Vector&>().getLocalViewDevice(Tpetra::Access::ReadWrite));
+
+/// One element's residual (eq. 20), Newton matrix and round-off scale added into the overlap
+/// rows and the CRS values (through the precomputed positions `off`).
+struct TetNewton {
+  ElementViews ev;
+  ConstDev u0, V0, u1;
+  Dev r, s;
+  Kokkos::View<double*, ExecSpace> vals;
+  Kokkos::View<int* [12][12], ExecSpace> off;
+  double g[3], dt;
+  kernels::Integrator integ;
+  bool want_matrix, want_scale;
+
+  template <bool Atomic>
+  KOKKOS_INLINE_FUNCTION void element(const int k, MinLoc::value_type& mn) const {
+    kernels::ElementState st;
+    ev.gather(u0, k, st.u0);
+    ev.gather(V0, k, st.V0);
+    ev.gather(u1, k, st.u1);
+    double Gk[4][3];
+    ev.gradients(k, Gk);
+    const double gk[3] = {g[0], g[1], g[2]};
+    const double detF = kernels::tet4_detF(Gk, st.u1);
+    if (detF < mn.val) {
+      mn.val = detF;
+      mn.loc = k;
+    }
+    double re[12], Ae[12][12], se[12];
+    if (want_matrix)
+      for (int p = 0; p < 12; ++p)
+        for (int q = 0; q < 12; ++q) Ae[p][q] = 0;
+    kernels::newton_tet4(Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, integ, dt, st, re,
+                         want_matrix ? Ae : nullptr, want_scale ? se : nullptr);
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) {
+        const int row = 3 * ev.node_lid(k, a) + i;
+        scatter_add<Atomic>(r(row, 0), re[3 * a + i]);
+        if (want_scale) scatter_add<Atomic>(s(row, 0), se[3 * a + i]);
+        if (want_matrix)  // precomputed positions in the CRS values: no column search
+          for (int q = 0; q < 12; ++q)
+            scatter_add<Atomic>(vals(off(k, 3 * a + i, q)), Ae[3 * a + i][q]);
+      }
+  }
+};
+
+}  // namespace
 
 AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const Vector& u1,
                                       double dt, FEMatrix* A, Vector& r, Vector* scale) const {
@@ -23,78 +75,51 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
     A->beginAssembly();
     A->setAllToScalar(0.0);
   }
-  {
-    auto vu0 = u0o->getLocalViewDevice(Tpetra::Access::ReadOnly);
-    auto vV0 = V0o->getLocalViewDevice(Tpetra::Access::ReadOnly);
-    auto vu1 = u1o->getLocalViewDevice(Tpetra::Access::ReadOnly);
-    auto vr = ro.getLocalViewDevice(Tpetra::Access::ReadWrite);
-    auto vs = so.getLocalViewDevice(Tpetra::Access::ReadWrite);
-    typename FEMatrix::local_matrix_device_type lcl;
-    Kokkos::View<double*, ExecSpace> vals;
+  const int ne = ev_.size();
+  MinLoc::value_type worst;
+  {  // the views of f are released before the matrix and vectors are exported
+    TetNewton f{ev_,
+                u0o->getLocalViewDevice(Tpetra::Access::ReadOnly),
+                V0o->getLocalViewDevice(Tpetra::Access::ReadOnly),
+                u1o->getLocalViewDevice(Tpetra::Access::ReadOnly),
+                ro.getLocalViewDevice(Tpetra::Access::ReadWrite),
+                so.getLocalViewDevice(Tpetra::Access::ReadWrite),
+                {},
+                {},
+                {model_.gravity[0], model_.gravity[1], model_.gravity[2]},
+                dt,
+                model_.integrator,
+                want_matrix,
+                want_scale};
     if (want_matrix) {
-      lcl = A->getLocalMatrixDevice();
-      vals = lcl.values;
+      const auto lcl = A->getLocalMatrixDevice();
+      f.vals = lcl.values;
       if (offsets_.extent(0) != static_cast<std::size_t>(ev_.size())) build_offsets(lcl);
+      f.off = offsets_;
     }
-    const auto off = offsets_;
-    const ElementViews ev = ev_;  // by value: never capture `this` in a device lambda
-    const double g0 = model_.gravity[0], g1 = model_.gravity[1], g2 = model_.gravity[2];
-    const auto integ = model_.integrator;
-    const int ne = ev.size();
-    Kokkos::MinLoc<double, int>::value_type worst;
-    Kokkos::parallel_reduce(
-        "emcontact::fem::em_tet4", Kokkos::RangePolicy<ExecSpace>(0, ne),
-        KOKKOS_LAMBDA(const int k, Kokkos::MinLoc<double, int>::value_type& mn) {
-          kernels::ElementState s;
-          ev.gather(vu0, k, s.u0);
-          ev.gather(vV0, k, s.V0);
-          ev.gather(vu1, k, s.u1);
-          double Gk[4][3];
-          ev.gradients(k, Gk);
-          const double gk[3] = {g0, g1, g2};
-          const double detF = kernels::tet4_detF(Gk, s.u1);
-          if (detF < mn.val) {
-            mn.val = detF;
-            mn.loc = k;
-          }
-          double re[12], Ae[12][12], se[12];
-          if (want_matrix)
-            for (int p = 0; p < 12; ++p)
-              for (int q = 0; q < 12; ++q) Ae[p][q] = 0;
-          kernels::newton_tet4(Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, integ, dt, s, re,
-                               want_matrix ? Ae : nullptr, want_scale ? se : nullptr);
-          for (int a = 0; a < 4; ++a)
-            for (int i = 0; i < 3; ++i) {
-              const int row = 3 * ev.node_lid(k, a) + i;
-              Kokkos::atomic_add(&vr(row, 0), re[3 * a + i]);
-              if (want_scale) Kokkos::atomic_add(&vs(row, 0), se[3 * a + i]);
-              if (want_matrix)  // precomputed positions in the CRS values: no column search
-                for (int q = 0; q < 12; ++q)
-                  Kokkos::atomic_add(&vals(off(k, 3 * a + i, q)), Ae[3 * a + i][q]);
-            }
-        },
-        Kokkos::MinLoc<double, int>(worst));
-    AssemblyInfo info;
-    info.min_detF = ne > 0 ? worst.val : 1e300;
-    info.worst_tet = ne > 0 ? part_.my_tets[worst.loc] : -1;
-    // global minimum: reduce (detF, tet) pairs
-    double local[2] = {info.min_detF, static_cast<double>(info.worst_tet)};
-    std::vector<double> all(2 * comm_->getSize());
-    Teuchos::gatherAll(*comm_, 2, local, static_cast<int>(all.size()), all.data());
-    for (int p = 0; p < comm_->getSize(); ++p)
-      if (all[2 * p] < info.min_detF) {
-        info.min_detF = all[2 * p];
-        info.worst_tet = static_cast<long long>(all[2 * p + 1]);
-      }
-    if (want_matrix) A->endAssembly();
-    r.putScalar(0.0);
-    r.doExport(ro, *exporter_, Tpetra::ADD);
-    if (want_scale) {
-      scale->putScalar(0.0);
-      scale->doExport(so, *exporter_, Tpetra::ADD);
-    }
-    return info;
+    worst = reduce_elements("emcontact::fem::em_tet4", f, colouring_, model_.scatter, ne);
   }
+  AssemblyInfo info;
+  info.min_detF = ne > 0 ? worst.val : 1e300;
+  // no element's det F compares (all NaN): no worst element
+  info.worst_tet = worst.loc >= 0 && worst.loc < ne ? part_.my_tets[worst.loc] : -1;
+  // global minimum: reduce (detF, tet) pairs
+  double local[2] = {info.min_detF, static_cast<double>(info.worst_tet)};
+  std::vector<double> all(2 * comm_->getSize());
+  Teuchos::gatherAll(*comm_, 2, local, static_cast<int>(all.size()), all.data());
+  for (int p = 0; p < comm_->getSize(); ++p)
+    if (all[2 * p] < info.min_detF) {
+      info.min_detF = all[2 * p];
+      info.worst_tet = static_cast<long long>(all[2 * p + 1]);
+    }
+  if (want_matrix) A->endAssembly();
+  r.putScalar(0.0);
+  r.doExport(ro, *exporter_, Tpetra::ADD);
+  if (want_scale) {
+    scale->putScalar(0.0);
+    scale->doExport(so, *exporter_, Tpetra::ADD);
+  }
+  return info;
 }
 
 // Position of every element entry (p, q) in the values of the (owned+shared) local matrix,
@@ -147,8 +172,8 @@ kernels::Monitors Discretization::monitors(const Vector& u, const Vector& V) con
         kernels::monitors_tet4(xk, Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, uk, Vk, m);
       },
       sum);
-  double local[13] = {sum.kinetic, sum.elastic, sum.potential, sum.L[0],      sum.L[1],
-                      sum.L[2],    sum.J[0],    sum.J[1],      sum.J[2],      sum.mass,
+  double local[13] = {sum.kinetic,   sum.elastic,   sum.potential, sum.L[0], sum.L[1],
+                      sum.L[2],      sum.J[0],      sum.J[1],      sum.J[2], sum.mass,
                       sum.moment[0], sum.moment[1], sum.moment[2]};
   double global[13];
   Teuchos::reduceAll(*comm_, Teuchos::REDUCE_SUM, 13, local, global);

@@ -18,6 +18,9 @@ Discretization::Discretization(const Model& model, RCP<const Comm> comm)
   build_maps();
   build_element_data();
   build_graph();
+  const auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ev_.node_lid);
+  colouring_ =
+      colour_chunks(lid, static_cast<int>(overlap_->getNodeNumElements() / 3), assembly_chunk);
 }
 
 void Discretization::build_maps() {

@@ -49,7 +49,8 @@ void apply_dirichlet(const Teuchos::ParameterList& params, Model& m, const std::
       if (m.bodies[k].name == body) bi = static_cast<int>(k);
     if (bi < 0) throw InputError(where + "/body: no body named \"" + body + "\"");
     const Body& b = m.bodies[bi];
-    if (b.rigid) throw InputError(where + "/body: \"" + body + "\" is a rigid surface: it is fixed already");
+    if (b.rigid)
+      throw InputError(where + "/body: \"" + body + "\" is a rigid surface: it is fixed already");
     for (int n : mesh::surface_nodes(b.mesh, surface, where + "/surface"))
       m.fixed[b.node_begin + n] = 1;
   }
@@ -66,8 +67,7 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
     const std::string name = bl.name(it);
     if (!bl.isSublist(name)) continue;
     if (k >= meshes.size()) throw Error("internal: fewer meshes than bodies");
-    Body b = make_body(name, bl.sublist(name), std::move(meshes[k++]),
-                       file + ": Bodies/" + name);
+    Body b = make_body(name, bl.sublist(name), std::move(meshes[k++]), file + ": Bodies/" + name);
     b.node_begin = b.node_end = m.num_nodes();
     b.tet_begin = b.tet_end = m.num_tets();
     if (b.mesh.tets.empty()) {  // a rigid surface body
@@ -95,8 +95,12 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
   if (params.isSublist("Loads"))
     m.gravity = vec3(params.sublist("Loads"), "gravity", file + ": Loads");
   const std::string integ = params.sublist("Time").get<std::string>("integrator");
-  m.integrator = integ == "midpoint" ? kernels::Integrator::midpoint
-                                    : kernels::Integrator::energy_momentum;
+  m.integrator =
+      integ == "midpoint" ? kernels::Integrator::midpoint : kernels::Integrator::energy_momentum;
+  if (params.isSublist("Solver") && params.sublist("Solver").isSublist("Assembly")) {
+    const auto& a = params.sublist("Solver").sublist("Assembly");
+    if (a.isParameter("scatter")) m.scatter = parse_scatter(a.get<std::string>("scatter"));
+  }
   return m;
 }
 

@@ -1,4 +1,4 @@
-// Schema of the body, load and Dirichlet parts of the input.
+// Schema of the body, load, Dirichlet and assembly parts of the input.
 #include "emcontact/fem/parameters.hpp"
 
 #include "emcontact/input/validators.hpp"
@@ -35,6 +35,21 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_dirichlet_parameters() {
           "Required: a named surface of the body's mesh (a Gmsh physical surface, a generator "
           "face such as xmin or bottom, or boundary); its displacement is fixed to zero.",
           any_string());
+  return pl;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_assembly_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Assembly"));
+  pl->set("scatter", std::string("coloured"),
+          "How the element loops add into the rows their elements share: coloured runs are "
+          "reproducible bit for bit with any number of threads (docs/THEORY.md §9) and measured "
+          "4-7% slower than atomic in Serial (perf/README.md \"OpenMP threads\"); atomic "
+          "runs with several threads differ in the last bits from run to run.",
+          string_choice("scatter", {"coloured", "atomic"},
+                        {"one loop per colour of 512-element chunks (chunks of a colour share no "
+                         "node) with plain adds: every row sums in the same order",
+                         "one loop over all elements with atomic adds: with several threads the "
+                         "order of the sums varies, and so does the round-off"}));
   return pl;
 }
 

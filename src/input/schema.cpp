@@ -24,6 +24,15 @@ Teuchos::RCP<const Teuchos::ParameterList> body_template() {
   return body;
 }
 
+/// `Solver`: `Newton` and `Linear` (linalg module), then `Assembly` (fem module).
+Teuchos::RCP<const Teuchos::ParameterList> solver_schema() {
+  auto solver = Teuchos::rcp(new Teuchos::ParameterList(*emc::linalg::valid_parameters()));
+  auto& assembly = solver->sublist("Assembly", false, "Element assembly of each Newton iteration.");
+  assembly = *emc::fem::valid_assembly_parameters();
+  assembly.setName("Assembly");
+  return solver;
+}
+
 }  // namespace
 
 std::vector<Section> sections() {
@@ -47,7 +56,7 @@ std::vector<Section> sections() {
        "surface (of another body, deformable or rigid); see \"Choosing slave and master\" "
        "above.",
        emc::contact::valid_pair_parameters(), "<pair>"},
-      {"Solver", "Newton and linear solvers.", emc::linalg::valid_parameters(), ""},
+      {"Solver", "Newton and linear solvers, element assembly.", solver_schema(), ""},
       {"Output", "What is written and where.", emc::output::valid_parameters(), ""},
   };
 }

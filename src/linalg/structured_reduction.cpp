@@ -308,7 +308,7 @@ void StructuredReduction::find_positions(const Matrix& A, const std::vector<char
 // Groups the contributions by the value they add to: order lists them by position (stably: in
 // their own order within a position), seg the start of each position's run. A kernel over the
 // runs then adds each position's contributions in a fixed order, with no two threads on one
-// value: the same bits on any number of threads (docs/THEORY.md §8).
+// value: the same bits on any number of threads (docs/THEORY.md §9).
 void StructuredReduction::segments(const std::vector<int>& pos,
                                    Kokkos::View<int*, ExecSpace>& order,
                                    Kokkos::View<int*, ExecSpace>& seg) {

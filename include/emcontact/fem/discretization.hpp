@@ -4,6 +4,7 @@
 // driver that launches the element kernels and scatters into a Tpetra::FECrsMatrix.
 #include <Teuchos_RCP.hpp>
 
+#include "emcontact/fem/colouring.hpp"
 #include "emcontact/fem/model.hpp"
 #include "emcontact/fem/partition.hpp"
 #include "emcontact/types.hpp"
@@ -53,6 +54,10 @@ class Discretization {
   Teuchos::RCP<const Map> overlap_map() const { return overlap_; }   ///< owned + shared dofs
   Teuchos::RCP<const Map> element_map() const { return elements_; }  ///< my tets
   Teuchos::RCP<FEGraph> graph() const { return graph_; }
+  /// My elements' chunks by colour (the loops of Solver/Assembly/scatter = coloured).
+  const Colouring& colouring() const { return colouring_; }
+  /// The overlap-map node index of each of my elements' 4 nodes.
+  Kokkos::View<int* [4], ExecSpace> element_nodes() const { return ev_.node_lid; }
 
   /// The reference coordinates of the owned nodes: coordinate c of node n at dof 3 n + c.
   Teuchos::RCP<Vector> reference_positions() const;
@@ -63,6 +68,8 @@ class Discretization {
 
   /// Residual of eq. 20 into r, the Newton matrix (2/dt^2) M + K into A (if not null), and
   /// the round-off scale of r (ALGORITHM.md §1 Newton tolerance) into scale (if not null).
+  /// Element loops as model().scatter says: coloured, the sums of every entry are in the same
+  /// order whatever the number of threads (bitwise reproducible).
   /// u0, V0 = state at t_n, u1 = current iterate; all owned vectors.
   AssemblyInfo assemble(const Vector& u0, const Vector& V0, const Vector& u1, double dt,
                         FEMatrix* A, Vector& r, Vector* scale) const;
@@ -85,6 +92,7 @@ class Discretization {
   Teuchos::RCP<const Export> exporter_;
   Teuchos::RCP<FEGraph> graph_;
   ElementViews ev_;
+  Colouring colouring_;
   mutable Kokkos::View<int* [12][12], ExecSpace> offsets_;  ///< element entries in the values
 
   void build_offsets(const FEMatrix::local_matrix_device_type& lcl) const;

@@ -2,11 +2,11 @@
 // The global (replicated) description of the problem: all bodies' meshes concatenated,
 // materials, initial velocities, loads and fixed nodes. Built identically on every rank.
 #include <Teuchos_ParameterList.hpp>
-
 #include <array>
 #include <string>
 #include <vector>
 
+#include "emcontact/fem/scatter.hpp"
 #include "emcontact/mesh/body_mesh.hpp"
 #include "kernels/em_tet4.hpp"
 
@@ -26,14 +26,15 @@ struct Body {
 };
 
 struct Model {
-  std::vector<double> X;          ///< reference coordinates, 3 per global node
-  std::vector<int> tets;          ///< 4 global node ids per tet
-  std::vector<int> body_of_tet;   ///< body index per tet
+  std::vector<double> X;         ///< reference coordinates, 3 per global node
+  std::vector<int> tets;         ///< 4 global node ids per tet
+  std::vector<int> body_of_tet;  ///< body index per tet
   std::vector<Body> bodies;
-  std::vector<char> fixed;        ///< per global node: displacement prescribed to zero
-  std::vector<double> rigid_X;    ///< nodes of the rigid surface bodies, 3 each
+  std::vector<char> fixed;      ///< per global node: displacement prescribed to zero
+  std::vector<double> rigid_X;  ///< nodes of the rigid surface bodies, 3 each
   std::array<double, 3> gravity{};
   kernels::Integrator integrator = kernels::Integrator::energy_momentum;
+  Scatter scatter = Scatter::coloured;  ///< Solver/Assembly/scatter
 
   int num_nodes() const { return static_cast<int>(X.size() / 3); }
   int num_tets() const { return static_cast<int>(tets.size() / 4); }

@@ -1,5 +1,5 @@
 #pragma once
-// The body, load and Dirichlet parts of the input: declared here, validated by the input
+// The body, load, Dirichlet and assembly parts of the input: declared here, validated by the input
 // module (which adds each body's `Mesh` sublist from emc::mesh::valid_mesh_parameters()).
 #include <Teuchos_ParameterList.hpp>
 
@@ -17,5 +17,9 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_load_parameters();
 /// (a named surface of that body's mesh); both required (default ""). The displacement of the
 /// surface's nodes is fixed to zero.
 Teuchos::RCP<const Teuchos::ParameterList> valid_dirichlet_parameters();
+
+/// Valid parameters of `Solver/Assembly`: `scatter` (coloured or atomic, see
+/// emcontact/fem/scatter.hpp).
+Teuchos::RCP<const Teuchos::ParameterList> valid_assembly_parameters();
 
 }  // namespace emc::fem

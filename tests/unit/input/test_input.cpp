@@ -144,6 +144,7 @@ TEST_F(InputTest, DefaultsAreFilled) {
   EXPECT_EQ(linear.get<int>("max iterations"), 1000);
   EXPECT_EQ(linear.get<bool>("reuse preconditioner"), true);
   EXPECT_EQ(linear.get<double>("residual check factor"), 100.0);
+  EXPECT_EQ(p.sublist("Solver").sublist("Assembly").get<std::string>("scatter"), "coloured");
   EXPECT_TRUE(linear.isSublist("Belos") && linear.isSublist("Ifpack2") &&
               linear.isSublist("MueLu"));
   const auto& output = p.sublist("Output");
@@ -179,6 +180,12 @@ TEST_F(InputTest, UnknownIntegratorRefused) {
   x.time += R"(<Parameter name="integrator" type="string" value="leapfrog"/>)";
   expect_message(error(x), {"parameter \"Time/integrator\"", "\"leapfrog\"",
                             "allowed: one of \"energy-momentum\", \"midpoint\""});
+}
+
+TEST_F(InputTest, UnknownScatterRefused) {
+  expect_message(
+      error(Xml{}, {"Solver/Assembly/scatter=colored"}),
+      {"\"Solver/Assembly/scatter", "\"colored\"", "allowed: one of \"coloured\", \"atomic\""});
 }
 
 TEST_F(InputTest, MisspeltNameRefused) {
