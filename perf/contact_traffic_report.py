@@ -19,7 +19,7 @@ IMPACT = ['--set', 'Bodies/ball/Mesh/center={0, 0, 0.405}', '--set', 'Bodies/bal
 
 
 def timer(stdout, name, steps):
-    tm = re.search(r'emcontact: %s\s+(.*)' % name, stdout)
+    tm = re.search(r'^emcontact: %s\s+([\d.e+-]+ \(.*)' % re.escape(name), stdout, re.M)
     if not tm:
         return 0.0
     nums = re.findall(r'([\d.e+-]+) \(', tm[1])
@@ -39,12 +39,15 @@ def run(build, size, ranks, steps, preconditioner):
     if p.returncode != 0:
         sys.exit('failed: %s\n%s%s' % (' '.join(cmd), p.stdout, p.stderr[-3000:]))
     m = re.search(r'emcontact: (\d+) tets, (\d+) nodes on (\d+) rank\(s\).*?(\d+) steps to', p.stdout)
-    c = re.search(r'contact nodes per rank (\d+) \((\d+) owned by other ranks\), (\d+) bytes received per '
+    c = re.search(r'emcontact: (\d+) contact nodes per rank \((\d+) owned by other ranks\), (\d+) bytes received per '
                   r'import of their positions, (\d+) imports', p.stdout)
     r = dict(size=size, tets=int(m[1]), nodes=int(m[2]), ranks=int(m[3]), steps=int(m[4]),
              contact_nodes=int(c[1]), remote=int(c[2]), bytes_per_import=int(c[3]), imports=int(c[4]))
     r['assembly_s'] = timer(p.stdout, 'assembly', r['steps'])
     r['contact_s'] = timer(p.stdout, 'contact', r['steps'])
+    for k, name in (('select_s', 'contact: node selection'), ('activation_s', 'contact: activation'),
+                    ('rows_s', 'contact: chains and rows')):
+        r[k] = timer(p.stdout, name, r['steps'])
     r['replicated_bytes'] = 24 * (r['nodes'] - r['nodes'] // r['ranks'])
     return r
 
@@ -64,13 +67,15 @@ def main():
              'ball\'s impact phase, `preconditioner = %s`; largest over the ranks).' % (
                  datetime.date.today(), a.steps, ' '.join(a.sizes), a.preconditioner), '',
              '| tets | nodes | ranks | contact nodes per rank | of which remote | bytes received per import | '
-             'imports per step | replicated: doubles per rank / bytes per import | contact / assembly s per step |',
-             '|---|---|---|---|---|---|---|---|---|']
+             'imports per step | replicated: doubles per rank / bytes per import | contact / assembly s per step | '
+             'of contact: selection / activation / chains and rows (host) |',
+             '|---|---|---|---|---|---|---|---|---|---|']
     for r in rows:
-        lines.append('| %d | %d | %d | %d (%.1f%% of the nodes) | %d | %d | %.1f | %d / %d | %.4f / %.4f (%.1f%%) |' % (
+        lines.append('| %d | %d | %d | %d (%.1f%% of the nodes) | %d | %d | %.1f | %d / %d | %.4f / %.4f (%.1f%%) | %.4f / %.4f / %.4f |' % (
             r['tets'], r['nodes'], r['ranks'], r['contact_nodes'], 100.0 * r['contact_nodes'] / r['nodes'],
             r['remote'], r['bytes_per_import'], r['imports'] / r['steps'], 3 * r['nodes'], r['replicated_bytes'],
-            r['contact_s'], r['assembly_s'], 100 * r['contact_s'] / max(r['assembly_s'], 1e-12)))
+            r['contact_s'], r['assembly_s'], 100 * r['contact_s'] / max(r['assembly_s'], 1e-12),
+            r['select_s'], r['activation_s'], r['rows_s']))
     replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'contact_traffic', '\n'.join(lines),
                     '## Contact memory and traffic per rank')
     print('\n'.join(lines))

@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
           s.max_energy_error, s.output_dir.c_str());
       if (s.contact_imports > 0)
         std::printf(
-            "emcontact: contact nodes per rank %lld (%lld owned by other ranks), %lld bytes "
+            "emcontact: %lld contact nodes per rank (%lld owned by other ranks), %lld bytes "
             "received per import of their positions, %lld imports (the largest over the "
             "ranks)\n",
             s.contact_nodes, s.contact_remote, s.contact_bytes, s.contact_imports);

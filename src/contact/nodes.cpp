@@ -1,11 +1,11 @@
 // docs/THEORY.md §8: the contact nodes of a rank and the import of their positions only.
 #include "emcontact/contact/nodes.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
 #include <array>
 #include <set>
-
-#include <Teuchos_TimeMonitor.hpp>
 
 #include "emcontact/parallel.hpp"
 
@@ -90,8 +90,12 @@ std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Vector& u0,
   for (const auto& b : mine) flat.insert(flat.end(), b.begin(), b.end());
   const auto all = allgather(*disc_.comm(), flat);  // [rank][pair][6]
   auto o0 = disc_.new_overlap_vector(), o1 = disc_.new_overlap_vector();
-  disc_.to_overlap(u0, *o0);
-  disc_.to_overlap(u1, *o1);
+  const bool deformable =
+      std::any_of(pairs_.begin(), pairs_.end(), [](const Pair& p) { return !p.rigid_master; });
+  if (deformable) {  // the positions of the deformable facets my elements hold
+    disc_.to_overlap(u0, *o0);
+    disc_.to_overlap(u1, *o1);
+  }
   auto v0 = o0->getLocalViewHost(Tpetra::Access::ReadOnly);
   auto v1 = o1->getLocalViewHost(Tpetra::Access::ReadOnly);
   const auto& overlap = *disc_.overlap_map();
@@ -149,8 +153,13 @@ void ContactNodes::select(const Vector& u0, const Vector& u1, const ActiveIndex&
   Teuchos::TimeMonitor tm(*timer);
   auto need = facets_in_reach(u0, u1);
   close_chains(need, index);
-  build(need);
   ++traffic_.selections;
+  // the same facets on every rank: the nodes, their import and the local numbering stay
+  int changed = need != selected_ ? 1 : 0, any = 0;
+  Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MAX, 1, &changed, &any);
+  if (!any && import_) return;
+  build(need);
+  selected_ = std::move(need);
 }
 
 void ContactNodes::build(const std::vector<std::vector<int>>& need) {
