@@ -1,145 +1,265 @@
 #include "emcontact/contact/search.hpp"
 
+#include <Kokkos_Sort.hpp>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 
 #include "kernels/facet.hpp"
 
 namespace emc::contact {
 
-// The record of facet f: grown box, nodes and the CPP's metric (ALGORITHM.md §2).
-void FacetGrid::precompute(int f, double margin) {
-  FacetData& d = data_[f];
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < 3; ++i) d.xm[a][i] = x_[3 * facets_[f][a] + i];
-  d.metric = kernels::facet_metric(d.xm);
-  for (int i = 0; i < 3; ++i) {
-    d.box[i] = std::min({d.xm[0][i], d.xm[1][i], d.xm[2][i]}) - margin;
-    d.box[3 + i] = std::max({d.xm[0][i], d.xm[1][i], d.xm[2][i]}) + margin;
+namespace {
+
+using Policy = Kokkos::RangePolicy<ExecSpace>;
+
+/// The largest float <= v and the smallest float >= v (v well inside the float range).
+KOKKOS_INLINE_FUNCTION float round_down(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) > v) f -= (f < 0 ? -f : f) * 0x1p-22f + 1.2e-38f;
+  return f;
+}
+KOKKOS_INLINE_FUNCTION float round_up(double v) {
+  return -round_down(-v);
+}
+
+/// Per facet f (ALGORITHM.md §2): its grown box and what the CPP needs, computed once per
+/// grid with kernels::facet_metric, so that the queries give kernels::facet_cpp's bits.
+void fill_records(FacetGrid::FacetsView facets, FacetGrid::PointsView x, double margin,
+                  FacetGrid::Records rec, FacetGrid::GapRecords gap) {
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_records", Policy(0, facets.extent(0)), KOKKOS_LAMBDA(const int f) {
+        double xm[3][3];
+        for (int a = 0; a < 3; ++a)
+          for (int i = 0; i < 3; ++i) xm[a][i] = x(facets(f, a), i);
+        const kernels::FacetMetric m = kernels::facet_metric(xm);
+        for (int i = 0; i < 3; ++i) {
+          const double lo = xm[0][i] < xm[1][i] ? xm[0][i] : xm[1][i];
+          const double hi = xm[0][i] < xm[1][i] ? xm[1][i] : xm[0][i];
+          rec(f, i) = (lo < xm[2][i] ? lo : xm[2][i]) - margin;
+          rec(f, 3 + i) = (hi < xm[2][i] ? xm[2][i] : hi) + margin;
+          rec(f, 6 + i) = xm[0][i];
+          rec(f, 9 + i) = m.f.t1[i];
+          rec(f, 12 + i) = m.f.t2[i];
+          gap(f, i) = xm[1][i];
+          gap(f, 3 + i) = xm[2][i];
+          gap(f, 6 + i) = m.f.n[i];
+        }
+        rec(f, 15) = m.g11;
+        rec(f, 16) = m.g12;
+        rec(f, 17) = m.g22;
+        rec(f, 18) = m.det;
+        rec(f, 19) = m.f.area2;
+      });
+}
+
+/// The bounds of all grown boxes and the sum of the facets' extents (3 per facet).
+struct Bounds {
+  double lo[3], hi[3], ext;
+};
+
+struct BoundsReduce {
+  using value_type = Bounds;
+  FacetGrid::Records rec;
+  double margin;
+  KOKKOS_INLINE_FUNCTION void operator()(const int f, Bounds& b) const {
+    for (int i = 0; i < 3; ++i) {
+      b.ext += rec(f, 3 + i) - rec(f, i) - 2 * margin;
+      b.lo[i] = rec(f, i) < b.lo[i] ? rec(f, i) : b.lo[i];
+      b.hi[i] = rec(f, 3 + i) > b.hi[i] ? rec(f, 3 + i) : b.hi[i];
+    }
   }
+  KOKKOS_INLINE_FUNCTION void init(Bounds& b) const {
+    for (int i = 0; i < 3; ++i) {
+      b.lo[i] = 1e300;
+      b.hi[i] = -1e300;
+    }
+    b.ext = 0;
+  }
+  KOKKOS_INLINE_FUNCTION void join(volatile Bounds& a, const volatile Bounds& b) const {
+    for (int i = 0; i < 3; ++i) {
+      a.lo[i] = b.lo[i] < a.lo[i] ? b.lo[i] : a.lo[i];
+      a.hi[i] = b.hi[i] > a.hi[i] ? b.hi[i] : a.hi[i];
+    }
+    a.ext += b.ext;
+  }
+};
+
+Bounds bounds(FacetGrid::Records rec, double margin) {
+  Bounds b;
+  Kokkos::parallel_reduce("emcontact::contact::grid_bounds", Policy(0, rec.extent(0)),
+                          BoundsReduce{rec, margin}, b);
+  return b;
+}
+
+/// Calls fn(c) for every cell that facet f's grown box overlaps.
+template <class F>
+KOKKOS_INLINE_FUNCTION void for_each_cell(const GridShape& s, FacetGrid::Records rec, int f,
+                                          F&& fn) {
+  int a[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = s.clamp_index(rec(f, i), i);
+    b[i] = s.clamp_index(rec(f, 3 + i), i);
+  }
+  for (int k = a[2]; k <= b[2]; ++k)
+    for (int j = a[1]; j <= b[1]; ++j)
+      for (int i = a[0]; i <= b[0]; ++i) fn((k * s.dims[1] + j) * s.dims[0] + i);
+}
+
+/// How many facets every cell holds, in start(c + 1).
+void count_cells(const GridShape& s, FacetGrid::Records rec, Kokkos::View<int*, ExecSpace> start) {
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_count", Policy(0, rec.extent(0)), KOKKOS_LAMBDA(const int f) {
+        for_each_cell(s, rec, f, [&](int c) { Kokkos::atomic_increment(&start(c + 1)); });
+      });
+}
+
+/// start(c) = the sum of the counts of the cells before c; returns the total.
+int scan_cells(Kokkos::View<int*, ExecSpace> start) {
+  int total = 0;
+  Kokkos::parallel_scan(
+      "emcontact::contact::grid_scan", Policy(0, start.extent(0)),
+      KOKKOS_LAMBDA(const int c, int& sum, const bool final) {
+        sum += start(c);
+        if (final) start(c) = sum;
+      },
+      total);
+  return total;
+}
+
+/// Every cell's facets in increasing id order: in any order with atomics, then sorted (the
+/// lists are short); the order of the candidates, hence ties, never depends on the threads.
+void fill_cells(const GridShape& s, FacetGrid::Records rec,
+                Kokkos::View<const int*, ExecSpace> start,
+                Kokkos::View<CellEntry*, ExecSpace> entries) {
+  Kokkos::View<int*, ExecSpace> next("emc::grid_next", start.extent(0) - 1);
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_fill", Policy(0, rec.extent(0)), KOKKOS_LAMBDA(const int f) {
+        for_each_cell(s, rec, f, [&](int c) {
+          entries(start(c) + Kokkos::atomic_fetch_add(&next(c), 1)).facet = f;
+        });
+      });
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_sort", Policy(0, next.extent(0)), KOKKOS_LAMBDA(const int c) {
+        for (int k = start(c) + 1; k < start(c + 1); ++k) {  // insertion sort
+          const int f = entries(k).facet;
+          int j = k;
+          for (; j > start(c) && entries(j - 1).facet > f; --j)
+            entries(j).facet = entries(j - 1).facet;
+          entries(j).facet = f;
+        }
+      });
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_boxes", Policy(0, entries.extent(0)), KOKKOS_LAMBDA(const int k) {
+        const int f = entries(k).facet;
+        for (int i = 0; i < 3; ++i) {
+          entries(k).lo[i] = round_down(rec(f, i) - s.lo[i]);
+          entries(k).hi[i] = round_up(rec(f, 3 + i) - s.lo[i]);
+        }
+        entries(k).pad = 0;
+      });
+}
+
+}  // namespace
+
+// ALGORITHM.md §2: the grid of the grown boxes, built in parallel.
+FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
+    : rec_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_records"), facets.extent(0)),
+      gap_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_gap_records"), facets.extent(0)) {
+  const int nf = static_cast<int>(facets.extent(0));
+  fill_records(facets, x, margin, rec_, gap_);
+  const Bounds b = bounds(rec_, margin);
+  // ties: 1e-14 of the cell size of cells about the mean facet extent, at most 128 per direction
+  double h = nf ? std::max(b.ext / (3.0 * nf), 1e-12) + 2 * margin : 1.0;
+  for (int i = 0; i < 3; ++i) h = std::max(h, (b.hi[i] - b.lo[i]) / 128.0);
+  tie_ = 1e-14 * h;
+  shape_.h = h;
+  for (int i = 0; i < 3; ++i) {
+    shape_.lo[i] = b.lo[i];
+    shape_.dims[i] = nf ? std::max(1, int(std::ceil((b.hi[i] - b.lo[i]) / h))) : 1;
+  }
+  const GridShape s = shape_;
+  cell_start_ = Kokkos::View<int*, ExecSpace>("emc::grid_start", s.num_cells() + 1);
+  count_cells(s, rec_, cell_start_);
+  const int total = scan_cells(cell_start_);
+  entries_ = Kokkos::View<CellEntry*, ExecSpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::grid_entries"), total);
+  fill_cells(s, rec_, cell_start_, entries_);
 }
 
 FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
                      double margin)
-    : facets_(facets), x_(x) {
-  const int nf = static_cast<int>(facets.size());
-  data_.resize(nf);
-  double hi[3] = {-1e300, -1e300, -1e300}, ext_sum = 0;
-  for (int i = 0; i < 3; ++i) lo_[i] = 1e300;
-  for (int f = 0; f < nf; ++f) {
-    precompute(f, margin);
-    const double* b = data_[f].box;
-    for (int i = 0; i < 3; ++i) {
-      ext_sum += b[3 + i] - b[i] - 2 * margin;
-      lo_[i] = std::min(lo_[i], b[i]);
-      hi[i] = std::max(hi[i], b[3 + i]);
-    }
-  }
-  // cells about the mean facet extent, at most 128 per direction
-  double h = nf ? std::max(ext_sum / (3.0 * nf), 1e-12) + 2 * margin : 1.0;
-  for (int i = 0; i < 3; ++i) h = std::max(h, (hi[i] - lo_[i]) / 128.0);
-  h_ = h;
-  for (int i = 0; i < 3; ++i) dims_[i] = nf ? std::max(1, int(std::ceil((hi[i] - lo_[i]) / h))) : 1;
-  const std::size_t ncell = std::size_t(dims_[0]) * dims_[1] * dims_[2];
-  // CSR: count, prefix sum, fill in facet order (so every cell's list is sorted by facet id)
-  std::vector<int> count(ncell + 1, 0);
-  auto range = [&](int f, int i, int& a, int& b) {
-    a = std::clamp(int(std::floor((data_[f].box[i] - lo_[i]) / h_)), 0, dims_[i] - 1);
-    b = std::clamp(int(std::floor((data_[f].box[3 + i] - lo_[i]) / h_)), 0, dims_[i] - 1);
-  };
-  auto visit = [&](int f, auto&& fn) {
-    int a[3], b[3];
-    for (int i = 0; i < 3; ++i) range(f, i, a[i], b[i]);
-    for (int k = a[2]; k <= b[2]; ++k)
-      for (int j = a[1]; j <= b[1]; ++j)
-        for (int i = a[0]; i <= b[0]; ++i) fn((std::size_t(k) * dims_[1] + j) * dims_[0] + i);
-  };
-  for (int f = 0; f < nf; ++f) visit(f, [&](std::size_t c) { ++count[c + 1]; });
-  for (std::size_t c = 0; c < ncell; ++c) count[c + 1] += count[c];
-  cell_start_ = Kokkos::View<int*, Kokkos::HostSpace>("emc::grid_start", ncell + 1);
-  cell_facets_ = Kokkos::View<int*, Kokkos::HostSpace>("emc::grid_facets", count[ncell]);
-  for (std::size_t c = 0; c <= ncell; ++c) cell_start_(c) = count[c];
-  std::vector<int> fill(count.begin(), count.end() - 1);
-  for (int f = 0; f < nf; ++f) visit(f, [&](std::size_t c) { cell_facets_(fill[c]++) = f; });
-}
-
-int FacetGrid::cell_of(const double y[3], int d[3]) const {
-  for (int i = 0; i < 3; ++i) {
-    const double t = std::floor((y[i] - lo_[i]) / h_);
-    if (!(t >= 0 && t < dims_[i])) return -1;
-    d[i] = int(t);
-  }
-  return (d[2] * dims_[1] + d[1]) * dims_[0] + d[0];
-}
-
-// kernels::facet_cpp with the facet's metric computed once.
-bool FacetGrid::cpp(int f, const double y[3], Hit& h) const {
-  h.facet = f;
-  return kernels::facet_cpp(y, data_[f].xm, data_[f].metric, h.xi, h.gap);
-}
-
-// ALGORITHM.md §2 (choice of facet) and §5 step 2 (keep the current facet up to hyst).
-Hit FacetGrid::locate(const double y[3], int current, double hyst) const {
-  const double tol = 1e-9;
-  if (current >= 0) {
-    Hit h;
-    if (cpp(current, y, h) && kernels::facet_outside(h.xi) <= std::max(hyst, tol)) {
-      h.inside = true;
-      return h;
-    }
-  }
-  Hit best, least;
-  double least_out = 1e300;
-  for_each_candidate(y, [&](const Hit& h, double out) {
-    if (out <= tol && (best.facet < 0 || std::fabs(h.gap) < std::fabs(best.gap) - 1e-14 * h_)) {
-      best = h;
-      best.inside = true;
-    }
-    if (out < least_out) {
-      least_out = out;
-      least = h;
-    }
-  });
-  if (best.facet >= 0 || current < 0) return best;
-  if (least.facet < 0) {  // nothing near: keep the current facet, extrapolated
-    cpp(current, y, least);
-    least_out = kernels::facet_outside(least.xi);
-  }
-  least.inside = least_out <= hyst;
-  return least;
+    : FacetGrid(Kokkos::create_mirror_view_and_copy(
+                    ExecSpace::memory_space(),
+                    Kokkos::View<const int* [3], Kokkos::HostSpace, Kokkos::MemoryUnmanaged>(
+                        facets.empty() ? nullptr : facets.front().data(), facets.size())),
+                Kokkos::create_mirror_view_and_copy(
+                    ExecSpace::memory_space(),
+                    Kokkos::View<const double* [3], Kokkos::HostSpace, Kokkos::MemoryUnmanaged>(
+                        x.data(), x.size() / 3)),
+                margin) {
+  static_assert(sizeof(std::array<int, 3>) == 3 * sizeof(int));
 }
 
 }  // namespace emc::contact
 
 namespace emc::contact {
 
-// ALGORITHM.md §2 for each point (locate), in an order that reuses the cache.
+namespace {
+
+/// Bit b of v (< 2^10) to bit 3b.
+KOKKOS_INLINE_FUNCTION unsigned spread(unsigned v) {
+  unsigned r = 0;
+  for (int b = 0; b < 10; ++b) r |= ((v >> b) & 1u) << (3 * b);
+  return r;
+}
+
+/// The Morton code of the cell of every point, points outside the grid after all cells.
+Kokkos::View<int*, ExecSpace> morton_keys(const GridShape& s, FacetGrid::PointsView y,
+                                          int outside) {
+  Kokkos::View<int*, ExecSpace> key(Kokkos::ViewAllocateWithoutInitializing("emc::grid_keys"),
+                                    y.extent(0));
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_query_keys", Policy(0, y.extent(0)), KOKKOS_LAMBDA(const int k) {
+        const double p[3] = {y(k, 0), y(k, 1), y(k, 2)};
+        int d[3];
+        key(k) = s.cell_of(p, d) < 0 ? outside
+                                     : int(spread(d[0]) | spread(d[1]) << 1 | spread(d[2]) << 2);
+      });
+  return key;
+}
+
+}  // namespace
+
+// ALGORITHM.md §2 for every point (locate), visited in an order that reuses the cache.
+void FacetGrid::locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) const {
+  const int n = static_cast<int>(y.extent(0));
+  const GridShape& s = shape_;
+  const int outside =
+      int(spread(s.dims[0] - 1) | spread(s.dims[1] - 1) << 1 | spread(s.dims[2] - 1) << 2) + 1;
+  const auto key = morton_keys(s, y, outside);
+  // about 4 points per bin: the order inside a bin does not matter
+  using Op = Kokkos::BinOp1D<Kokkos::View<int*, ExecSpace>>;
+  Kokkos::BinSort<Kokkos::View<int*, ExecSpace>, Op> sort(key, Op(std::max(1, n / 4), 0, outside));
+  sort.create_permute_vector();
+  const auto order = sort.get_permute_vector();
+  const FacetGrid grid = *this;  // by value: never capture `this` in a device lambda
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_locate_all", Policy(0, n), KOKKOS_LAMBDA(const int t) {
+        const int k = order(t);
+        const double p[3] = {y(k, 0), y(k, 1), y(k, 2)};
+        hits(k) = grid.locate(p);
+      });
+}
+
 void FacetGrid::locate_all(const double* y, std::size_t n, std::vector<Hit>& hits) const {
   hits.assign(n, Hit{});
-  // keys: the Morton code of the cell (at most 128 = 2^7 cells per direction: 21 bits),
-  // points outside the grid last; two 11-bit passes
-  auto spread = [](std::uint32_t v) {  // bit b of v to bit 3b
-    std::uint32_t r = 0;
-    for (int b = 0; b < 7; ++b) r |= ((v >> b) & 1u) << (3 * b);
-    return r;
-  };
-  const std::uint32_t outside = 1u << 21;
-  std::vector<std::uint32_t> key(n), order(n), next(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    int d[3];
-    const int c = cell_of(&y[3 * k], d);
-    key[k] = c < 0 ? outside : spread(d[0]) | spread(d[1]) << 1 | spread(d[2]) << 2;
-    order[k] = static_cast<std::uint32_t>(k);
-  }
-  for (int shift = 0; shift < 22; shift += 11) {  // LSD radix sort, stable
-    std::vector<std::size_t> start(2049, 0);
-    for (std::size_t k = 0; k < n; ++k) ++start[((key[order[k]] >> shift) & 2047) + 1];
-    for (int b = 0; b < 2048; ++b) start[b + 1] += start[b];
-    for (std::size_t k = 0; k < n; ++k) next[start[(key[order[k]] >> shift) & 2047]++] = order[k];
-    order.swap(next);
-  }
-  for (std::uint32_t k : order) hits[k] = locate(&y[3 * k]);
+  const auto yd = Kokkos::create_mirror_view_and_copy(
+      ExecSpace::memory_space(),
+      Kokkos::View<const double* [3], Kokkos::HostSpace, Kokkos::MemoryUnmanaged>(y, n));
+  Kokkos::View<Hit*, Kokkos::HostSpace, Kokkos::MemoryUnmanaged> hh(hits.data(), n);
+  auto hd = Kokkos::create_mirror_view(ExecSpace::memory_space(), hh);
+  locate_all(yd, hd);
+  Kokkos::deep_copy(hh, hd);
 }
 
 }  // namespace emc::contact
