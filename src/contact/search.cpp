@@ -12,20 +12,11 @@ namespace {
 
 using Policy = Kokkos::RangePolicy<ExecSpace>;
 
-/// The largest float <= v and the smallest float >= v (v well inside the float range).
-KOKKOS_INLINE_FUNCTION float round_down(double v) {
-  float f = static_cast<float>(v);
-  if (static_cast<double>(f) > v) f -= (f < 0 ? -f : f) * 0x1p-22f + 1.2e-38f;
-  return f;
-}
-KOKKOS_INLINE_FUNCTION float round_up(double v) {
-  return -round_down(-v);
-}
-
 /// Per facet f (ALGORITHM.md §2): its grown box and what the CPP needs, computed once per
 /// grid with kernels::facet_metric, so that the queries give kernels::facet_cpp's bits.
 void fill_records(FacetGrid::FacetsView facets, FacetGrid::PointsView x, double margin,
-                  FacetGrid::Records rec, FacetGrid::GapRecords gap) {
+                  FacetGrid::Records rec, FacetGrid::Boxes box) {
+  using G = FacetGrid;
   Kokkos::parallel_for(
       "emcontact::contact::grid_records", Policy(0, facets.extent(0)), KOKKOS_LAMBDA(const int f) {
         double xm[3][3];
@@ -35,20 +26,46 @@ void fill_records(FacetGrid::FacetsView facets, FacetGrid::PointsView x, double 
         for (int i = 0; i < 3; ++i) {
           const double lo = xm[0][i] < xm[1][i] ? xm[0][i] : xm[1][i];
           const double hi = xm[0][i] < xm[1][i] ? xm[1][i] : xm[0][i];
-          rec(f, i) = (lo < xm[2][i] ? lo : xm[2][i]) - margin;
-          rec(f, 3 + i) = (hi < xm[2][i] ? xm[2][i] : hi) + margin;
-          rec(f, 6 + i) = xm[0][i];
-          rec(f, 9 + i) = m.f.t1[i];
-          rec(f, 12 + i) = m.f.t2[i];
-          gap(f, i) = xm[1][i];
-          gap(f, 3 + i) = xm[2][i];
-          gap(f, 6 + i) = m.f.n[i];
+          box(f, i) = (lo < xm[2][i] ? lo : xm[2][i]) - margin;
+          box(f, 3 + i) = (hi < xm[2][i] ? xm[2][i] : hi) + margin;
+          rec(f, G::X1 + i) = xm[0][i];
+          rec(f, G::T1 + i) = m.f.t1[i];
+          rec(f, G::T2 + i) = m.f.t2[i];
+          rec(f, G::NRM + i) = m.f.n[i];
+          rec(f, G::X2 + i) = xm[1][i];
+          rec(f, G::X3 + i) = xm[2][i];
         }
-        rec(f, 15) = m.g11;
-        rec(f, 16) = m.g12;
-        rec(f, 17) = m.g22;
-        rec(f, 18) = m.det;
-        rec(f, 19) = m.f.area2;
+        rec(f, G::G11) = m.g11;
+        rec(f, G::G12) = m.g12;
+        rec(f, G::G22) = m.g22;
+        rec(f, G::DET) = m.det;
+        rec(f, G::AREA) = m.f.area2;
+        rec(f, G::AREA + 1) = 0;
+      });
+}
+
+/// The float test of every facet (Prism): the dual basis a1 = (g22 tau_xi - g12 tau_eta) / det,
+/// a2 = (g11 tau_eta - g12 tau_xi) / det; a facet with an angle below about 0.06 degrees
+/// (det < 1e-6 g11 g22) or a degenerate one always passes (the exact CPP decides).
+void fill_prisms(const GridShape& s, FacetGrid::Records rec,
+                 Kokkos::View<Prism*, ExecSpace> prism) {
+  using G = FacetGrid;
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_prisms", Policy(0, rec.extent(0)), KOKKOS_LAMBDA(const int f) {
+        const double g11 = rec(f, G::G11), g12 = rec(f, G::G12), g22 = rec(f, G::G22);
+        const double det = rec(f, G::DET);
+        const bool exact = !(det >= 1e-6 * g11 * g22 && det > 0);
+        double c1 = 0, c2 = 0;
+        for (int i = 0; i < 3; ++i) {
+          const double a1 = exact ? 0 : (g22 * rec(f, G::T1 + i) - g12 * rec(f, G::T2 + i)) / det;
+          const double a2 = exact ? 0 : (g11 * rec(f, G::T2 + i) - g12 * rec(f, G::T1 + i)) / det;
+          c1 += a1 * (rec(f, G::X1 + i) - s.lo[i]);
+          c2 += a2 * (rec(f, G::X1 + i) - s.lo[i]);
+          prism(f).a1[i] = static_cast<float>(a1);
+          prism(f).a2[i] = static_cast<float>(a2);
+        }
+        prism(f).c1 = exact ? -0.5f : static_cast<float>(c1);
+        prism(f).c2 = exact ? -0.5f : static_cast<float>(c2);
       });
 }
 
@@ -59,13 +76,13 @@ struct Bounds {
 
 struct BoundsReduce {
   using value_type = Bounds;
-  FacetGrid::Records rec;
+  FacetGrid::Boxes box;
   double margin;
   KOKKOS_INLINE_FUNCTION void operator()(const int f, Bounds& b) const {
     for (int i = 0; i < 3; ++i) {
-      b.ext += rec(f, 3 + i) - rec(f, i) - 2 * margin;
-      b.lo[i] = rec(f, i) < b.lo[i] ? rec(f, i) : b.lo[i];
-      b.hi[i] = rec(f, 3 + i) > b.hi[i] ? rec(f, 3 + i) : b.hi[i];
+      b.ext += box(f, 3 + i) - box(f, i) - 2 * margin;
+      b.lo[i] = box(f, i) < b.lo[i] ? box(f, i) : b.lo[i];
+      b.hi[i] = box(f, 3 + i) > b.hi[i] ? box(f, 3 + i) : b.hi[i];
     }
   }
   KOKKOS_INLINE_FUNCTION void init(Bounds& b) const {
@@ -84,21 +101,20 @@ struct BoundsReduce {
   }
 };
 
-Bounds bounds(FacetGrid::Records rec, double margin) {
+Bounds bounds(FacetGrid::Boxes box, double margin) {
   Bounds b;
-  Kokkos::parallel_reduce("emcontact::contact::grid_bounds", Policy(0, rec.extent(0)),
-                          BoundsReduce{rec, margin}, b);
+  Kokkos::parallel_reduce("emcontact::contact::grid_bounds", Policy(0, box.extent(0)),
+                          BoundsReduce{box, margin}, b);
   return b;
 }
 
 /// Calls fn(c) for every cell that facet f's grown box overlaps.
 template <class F>
-KOKKOS_INLINE_FUNCTION void for_each_cell(const GridShape& s, FacetGrid::Records rec, int f,
-                                          F&& fn) {
+KOKKOS_INLINE_FUNCTION void for_each_cell(const GridShape& s, FacetGrid::Boxes box, int f, F&& fn) {
   int a[3], b[3];
   for (int i = 0; i < 3; ++i) {
-    a[i] = s.clamp_index(rec(f, i), i);
-    b[i] = s.clamp_index(rec(f, 3 + i), i);
+    a[i] = s.clamp_index(box(f, i), i);
+    b[i] = s.clamp_index(box(f, 3 + i), i);
   }
   for (int k = a[2]; k <= b[2]; ++k)
     for (int j = a[1]; j <= b[1]; ++j)
@@ -106,10 +122,10 @@ KOKKOS_INLINE_FUNCTION void for_each_cell(const GridShape& s, FacetGrid::Records
 }
 
 /// How many facets every cell holds, in start(c + 1).
-void count_cells(const GridShape& s, FacetGrid::Records rec, Kokkos::View<int*, ExecSpace> start) {
+void count_cells(const GridShape& s, FacetGrid::Boxes box, Kokkos::View<int*, ExecSpace> start) {
   Kokkos::parallel_for(
-      "emcontact::contact::grid_count", Policy(0, rec.extent(0)), KOKKOS_LAMBDA(const int f) {
-        for_each_cell(s, rec, f, [&](int c) { Kokkos::atomic_increment(&start(c + 1)); });
+      "emcontact::contact::grid_count", Policy(0, box.extent(0)), KOKKOS_LAMBDA(const int f) {
+        for_each_cell(s, box, f, [&](int c) { Kokkos::atomic_increment(&start(c + 1)); });
       });
 }
 
@@ -128,13 +144,12 @@ int scan_cells(Kokkos::View<int*, ExecSpace> start) {
 
 /// Every cell's facets in increasing id order: in any order with atomics, then sorted (the
 /// lists are short); the order of the candidates, hence ties, never depends on the threads.
-void fill_cells(const GridShape& s, FacetGrid::Records rec,
-                Kokkos::View<const int*, ExecSpace> start,
+void fill_cells(const GridShape& s, FacetGrid::Boxes box, Kokkos::View<const int*, ExecSpace> start,
                 Kokkos::View<CellEntry*, ExecSpace> entries) {
   Kokkos::View<int*, ExecSpace> next("emc::grid_next", start.extent(0) - 1);
   Kokkos::parallel_for(
-      "emcontact::contact::grid_fill", Policy(0, rec.extent(0)), KOKKOS_LAMBDA(const int f) {
-        for_each_cell(s, rec, f, [&](int c) {
+      "emcontact::contact::grid_fill", Policy(0, box.extent(0)), KOKKOS_LAMBDA(const int f) {
+        for_each_cell(s, box, f, [&](int c) {
           entries(start(c) + Kokkos::atomic_fetch_add(&next(c), 1)).facet = f;
         });
       });
@@ -147,15 +162,14 @@ void fill_cells(const GridShape& s, FacetGrid::Records rec,
             entries(j).facet = entries(j - 1).facet;
           entries(j).facet = f;
         }
-      });
-  Kokkos::parallel_for(
-      "emcontact::contact::grid_boxes", Policy(0, entries.extent(0)), KOKKOS_LAMBDA(const int k) {
-        const int f = entries(k).facet;
-        for (int i = 0; i < 3; ++i) {
-          entries(k).lo[i] = round_down(rec(f, i) - s.lo[i]);
-          entries(k).hi[i] = round_up(rec(f, 3 + i) - s.lo[i]);
+        const int d[3] = {c % s.dims[0], c / s.dims[0] % s.dims[1], c / s.dims[0] / s.dims[1]};
+        for (int k = start(c); k < start(c + 1); ++k) {
+          const int f = entries(k).facet;
+          for (int i = 0; i < 3; ++i) {
+            entries(k).lo[i] = s.quantum(box(f, i), i, d[i]);
+            entries(k).hi[i] = s.quantum(box(f, 3 + i), i, d[i]);
+          }
         }
-        entries(k).pad = 0;
       });
 }
 
@@ -163,27 +177,35 @@ void fill_cells(const GridShape& s, FacetGrid::Records rec,
 
 // ALGORITHM.md §2: the grid of the grown boxes, built in parallel.
 FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
-    : rec_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_records"), facets.extent(0)),
-      gap_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_gap_records"), facets.extent(0)) {
+    : prism_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_prisms"), facets.extent(0)),
+      rec_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_records"), facets.extent(0)),
+      box_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_boxes"), facets.extent(0)) {
   const int nf = static_cast<int>(facets.extent(0));
-  fill_records(facets, x, margin, rec_, gap_);
-  const Bounds b = bounds(rec_, margin);
-  // ties: 1e-14 of the cell size of cells about the mean facet extent, at most 128 per direction
+  fill_records(facets, x, margin, rec_, box_);
+  const Bounds b = bounds(box_, margin);
+  // ties: 1e-14 of the mean grown box (its extent + 2 margin), or of 1/128 of the grid
   double h = nf ? std::max(b.ext / (3.0 * nf), 1e-12) + 2 * margin : 1.0;
   for (int i = 0; i < 3; ++i) h = std::max(h, (b.hi[i] - b.lo[i]) / 128.0);
   tie_ = 1e-14 * h;
+  // cells twice that: a third of the entries of cells of size h, a 3x faster build, and the
+  // same query speed (perf/README.md, BM_ContactGridBuild and BM_ContactQueries)
+  h *= 2;
   shape_.h = h;
+  shape_.inv_h = 1 / h;
+  shape_.q_scale = 16384 / h;
   for (int i = 0; i < 3; ++i) {
     shape_.lo[i] = b.lo[i];
-    shape_.dims[i] = nf ? std::max(1, int(std::ceil((b.hi[i] - b.lo[i]) / h))) : 1;
+    // + 1: the cell of the highest box bound lies inside the grid (at most 65 per direction)
+    shape_.dims[i] = nf ? int(std::floor((b.hi[i] - b.lo[i]) * shape_.inv_h)) + 1 : 1;
   }
   const GridShape s = shape_;
+  fill_prisms(s, rec_, prism_);
   cell_start_ = Kokkos::View<int*, ExecSpace>("emc::grid_start", s.num_cells() + 1);
-  count_cells(s, rec_, cell_start_);
+  count_cells(s, box_, cell_start_);
   const int total = scan_cells(cell_start_);
   entries_ = Kokkos::View<CellEntry*, ExecSpace>(
       Kokkos::ViewAllocateWithoutInitializing("emc::grid_entries"), total);
-  fill_cells(s, rec_, cell_start_, entries_);
+  fill_cells(s, box_, cell_start_, entries_);
 }
 
 FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
@@ -206,7 +228,7 @@ namespace emc::contact {
 
 namespace {
 
-/// Bit b of v (< 2^10) to bit 3b.
+/// Bit b of v (< 2^10: at most 65 cells per direction) to bit 3b.
 KOKKOS_INLINE_FUNCTION unsigned spread(unsigned v) {
   unsigned r = 0;
   for (int b = 0; b < 10; ++b) r |= ((v >> b) & 1u) << (3 * b);
@@ -243,12 +265,22 @@ void FacetGrid::locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) con
   sort.create_permute_vector();
   const auto order = sort.get_permute_vector();
   const FacetGrid grid = *this;  // by value: never capture `this` in a device lambda
+  // the points in that order first: independent loads, not the head of each query's chain
+  Kokkos::View<double* [3], ExecSpace> ys(Kokkos::ViewAllocateWithoutInitializing("emc::grid_ys"),
+                                          n);
+  Kokkos::View<Hit*, ExecSpace> hs(Kokkos::ViewAllocateWithoutInitializing("emc::grid_hs"), n);
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_gather", Policy(0, n), KOKKOS_LAMBDA(const int t) {
+        for (int i = 0; i < 3; ++i) ys(t, i) = y(order(t), i);
+      });
   Kokkos::parallel_for(
       "emcontact::contact::grid_locate_all", Policy(0, n), KOKKOS_LAMBDA(const int t) {
-        const int k = order(t);
-        const double p[3] = {y(k, 0), y(k, 1), y(k, 2)};
-        hits(k) = grid.locate(p);
+        const double p[3] = {ys(t, 0), ys(t, 1), ys(t, 2)};
+        hs(t) = grid.locate(p);
       });
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_scatter", Policy(0, n),
+      KOKKOS_LAMBDA(const int t) { hits(order(t)) = hs(t); });
 }
 
 void FacetGrid::locate_all(const double* y, std::size_t n, std::vector<Hit>& hits) const {

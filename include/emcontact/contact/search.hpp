@@ -21,23 +21,34 @@ struct Hit {
   bool inside = false;  ///< CPP inside the facet (up to the tolerance asked)
 };
 
-/// One entry of a cell's list: the facet's grown box relative to the grid's origin, rounded
-/// outwards to float (a test that never rejects a point the exact box holds), and the facet id.
+/// One entry of a cell's list (16 bytes): the facet id and its grown box quantized in the
+/// cell by GridShape::quantum, a monotone map: a point's quantum below lo or above hi is
+/// outside the exact box, strictly between them inside; only equal quanta need the exact box.
 struct CellEntry {
-  float lo[3], hi[3];
-  int facet, pad;
+  short lo[3], hi[3];
+  int facet;
+};
+
+/// Per facet, a cheap test that a point's CPP lies outside it (32 bytes): the dual basis
+/// a1, a2 of (tau_xi, tau_eta) and c_k = a_k . (x_m1 - origin), in float, so that
+/// xi ~ a1 . (y - origin) - c1 and eta ~ a2 . (y - origin) - c2. A facet too distorted for
+/// float bounds gets a = 0, c = -1/2: its estimate (1/2, 1/2) always passes.
+struct Prism {
+  float a1[3], a2[3], c1, c2;
 };
 
 /// The grid's geometry: origin, cell size and cells per direction.
 struct GridShape {
   double lo[3] = {1e300, 1e300, 1e300};
   double h = 1;
+  double inv_h = 1;        ///< 1 / h: cells and quanta by products (the same in build and queries)
+  double q_scale = 16384;  ///< 2^14 / h
   int dims[3] = {1, 1, 1};
 
   /// The cell holding y (its indices in d), or -1 outside the grid.
   KOKKOS_INLINE_FUNCTION int cell_of(const double y[3], int d[3]) const {
     for (int i = 0; i < 3; ++i) {
-      const double t = (y[i] - lo[i]) / h;
+      const double t = (y[i] - lo[i]) * inv_h;
       if (!(t >= 0 && t < dims[i])) return -1;
       d[i] = static_cast<int>(t);  // t >= 0: the floor
     }
@@ -45,8 +56,16 @@ struct GridShape {
   }
   /// The cell index along axis i of coordinate v, clamped to the grid.
   KOKKOS_INLINE_FUNCTION int clamp_index(double v, int i) const {
-    const double t = (v - lo[i]) / h;
+    const double t = (v - lo[i]) * inv_h;
     return t < 1 ? 0 : (t > dims[i] - 1 ? dims[i] - 1 : static_cast<int>(t));
+  }
+  /// The quantum of coordinate v along axis i in cell index d: about (v - corner) / h * 2^14,
+  /// clamped to [-1, 2^14 + 1]; built only of rounded monotone operations, so that it never
+  /// decreases with v (the same bits in the build and the queries).
+  KOKKOS_INLINE_FUNCTION short quantum(double v, int i, int d) const {
+    double t = (v - (lo[i] + d * h)) * q_scale;
+    t = t < -1 ? -1 : (t > 16385 ? 16385 : t);
+    return static_cast<short>(static_cast<int>(t + 1) - 1);  // t + 1 >= 0: truncation
   }
   std::size_t num_cells() const { return std::size_t(dims[0]) * dims[1] * dims[2]; }
 };
@@ -55,11 +74,13 @@ class FacetGrid {
  public:
   using FacetsView = Kokkos::View<const int* [3], ExecSpace>;
   using PointsView = Kokkos::View<const double* [3], ExecSpace>;
-  /// Per facet, what the CPP's xi needs (one record, read together): the exact grown box
-  /// (lo, hi), x_m1, tau_xi, tau_eta, g11, g12, g22, det and |tau_xi x tau_eta|.
-  using Records = Kokkos::View<double* [20], Kokkos::LayoutRight, ExecSpace>;
-  /// Per facet, what the gap needs besides: x_m2, x_m3 and n.
-  using GapRecords = Kokkos::View<double* [9], Kokkos::LayoutRight, ExecSpace>;
+  /// Per facet, what the CPP needs, in three cache lines read together: x_m1, tau_xi,
+  /// tau_eta, g11, g12, g22, det, n, x_m2, x_m3 and |tau_xi x tau_eta| (offsets below).
+  using Records = Kokkos::View<double* [24], Kokkos::LayoutRight, ExecSpace>;
+  enum { X1 = 0, T1 = 3, T2 = 6, G11 = 9, G12 = 10, G22 = 11, DET = 12, NRM = 13, X2 = 16 };
+  enum { X3 = 19, AREA = 22 };
+  /// Per facet, its exact grown box (lo, hi), read only when the quantized box cannot decide.
+  using Boxes = Kokkos::View<double* [6], Kokkos::LayoutRight, ExecSpace>;
 
   /// Bins the facets (3 indices into x each) with their boxes grown by margin, in parallel.
   /// Only the records are kept: facets and x may go once the grid is built.
@@ -83,7 +104,9 @@ class FacetGrid {
     }
     Hit best, least;
     double least_out = 1e300;
-    for_each_box(y, [&](int f) {
+    // without a current facet only valid CPPs count: the others are skipped by the float test
+    const bool all = current >= 0;
+    for_each_box(y, all, [&](int f) {
       double xi[2];
       if (!project(f, y, xi)) return;
       const double out = kernels::facet_outside(xi);
@@ -120,7 +143,7 @@ class FacetGrid {
   /// increasing id order.
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_candidate(const double y[3], F&& fn) const {
-    for_each_box(y, [&](int f) {
+    for_each_box(y, true, [&](int f) {
       Hit h;
       if (cpp(f, y, h)) fn(h, kernels::facet_outside(h.xi));
     });
@@ -130,15 +153,15 @@ class FacetGrid {
   KOKKOS_INLINE_FUNCTION kernels::FacetMetric metric(int f) const {
     kernels::FacetMetric m;
     for (int i = 0; i < 3; ++i) {
-      m.f.t1[i] = rec_(f, 9 + i);
-      m.f.t2[i] = rec_(f, 12 + i);
-      m.f.n[i] = gap_(f, 6 + i);
+      m.f.t1[i] = rec_(f, T1 + i);
+      m.f.t2[i] = rec_(f, T2 + i);
+      m.f.n[i] = rec_(f, NRM + i);
     }
-    m.f.area2 = rec_(f, 19);
-    m.g11 = rec_(f, 15);
-    m.g12 = rec_(f, 16);
-    m.g22 = rec_(f, 17);
-    m.det = rec_(f, 18);
+    m.f.area2 = rec_(f, AREA);
+    m.g11 = rec_(f, G11);
+    m.g12 = rec_(f, G12);
+    m.g22 = rec_(f, G22);
+    m.det = rec_(f, DET);
     return m;
   }
 
@@ -156,8 +179,9 @@ class FacetGrid {
   double tie_ = 0;  ///< |g_N| closer than this are ties (1e-14 of the mean facet size, §2)
   Kokkos::View<int*, ExecSpace> cell_start_;
   Kokkos::View<CellEntry*, ExecSpace> entries_;
+  Kokkos::View<Prism*, ExecSpace> prism_;
   Records rec_;
-  GapRecords gap_;
+  Boxes box_;
 
   KOKKOS_INLINE_FUNCTION static double abs(double v) { return v < 0 ? -v : v; }
   KOKKOS_INLINE_FUNCTION static void set(Hit& h, int f, const double xi[2], double g, bool in) {
@@ -168,43 +192,103 @@ class FacetGrid {
     h.inside = in;
   }
 
-  /// Calls fn(f) for every facet whose grown box holds y, in increasing id order: the float
-  /// boxes of the cell's list first, then the exact box of the record.
+  /// Whether the CPP of y (yf: y - origin in float) on facet f may lie inside it up to tol:
+  /// false only when the float estimate of kernels::facet_outside, with a bound of its
+  /// round-off (below 8 2^-24 of the sum of the magnitudes summed), is beyond tol.
+  KOKKOS_INLINE_FUNCTION bool maybe_inside(int f, const float yf[3], double tol) const {
+    const Prism& p = prism_(f);
+    float xi = -p.c1, eta = -p.c2;
+    float size = 1 + (p.c1 < 0 ? -p.c1 : p.c1) + (p.c2 < 0 ? -p.c2 : p.c2);
+    for (int i = 0; i < 3; ++i) {  // yf >= 0 inside the grid
+      xi += p.a1[i] * yf[i];
+      eta += p.a2[i] * yf[i];
+      size += ((p.a1[i] < 0 ? -p.a1[i] : p.a1[i]) + (p.a2[i] < 0 ? -p.a2[i] : p.a2[i])) * yf[i];
+    }
+    float out = xi + eta - 1;  // -min(1 - xi - eta, xi, eta)
+    out = out > -xi ? out : -xi;
+    out = out > -eta ? out : -eta;
+    return out <= static_cast<float>(tol) + 1e-5f * size;
+  }
+
+  KOKKOS_INLINE_FUNCTION static void prefetch(const void* p) {
+#if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+  }
+
+  /// Whether the grown box of entry e holds y (quanta q of y in the entry's cell).
+  KOKKOS_INLINE_FUNCTION bool in_box(const CellEntry& e, const short q[3],
+                                     const double y[3]) const {
+    // one branch each (bitwise, not short-circuit): the lists are scanned in full
+    if ((q[0] < e.lo[0]) | (q[0] > e.hi[0]) | (q[1] < e.lo[1]) | (q[1] > e.hi[1]) |
+        (q[2] < e.lo[2]) | (q[2] > e.hi[2]))
+      return false;  // surely outside
+    if ((q[0] != e.lo[0]) & (q[0] != e.hi[0]) & (q[1] != e.lo[1]) & (q[1] != e.hi[1]) &
+        (q[2] != e.lo[2]) & (q[2] != e.hi[2]))
+      return true;  // surely inside
+    const int f = e.facet;
+    return !(y[0] < box_(f, 0) || y[0] > box_(f, 3) || y[1] < box_(f, 1) || y[1] > box_(f, 4) ||
+             y[2] < box_(f, 2) || y[2] > box_(f, 5));
+  }
+
+  /// Calls fn(f) for every facet whose grown box holds y (all) or, if not all, only for
+  /// those that are maybe_inside, in increasing id order. The cell's list is scanned first and
+  /// the records of the facets found are fetched together (batches of at most 32), so that
+  /// their memory latencies overlap.
   template <class F>
-  KOKKOS_INLINE_FUNCTION void for_each_box(const double y[3], F&& fn) const {
+  KOKKOS_INLINE_FUNCTION void for_each_box(const double y[3], bool all, F&& fn) const {
     int d[3];
     const int c = shape_.cell_of(y, d);
     if (c < 0) return;
-    float yf[3];  // relative to the origin, as the float boxes
-    for (int i = 0; i < 3; ++i) yf[i] = static_cast<float>(y[i] - shape_.lo[i]);
+    short q[3];
+    float yf[3];
+    for (int i = 0; i < 3; ++i) {
+      q[i] = shape_.quantum(y[i], i, d[i]);
+      yf[i] = static_cast<float>(y[i] - shape_.lo[i]);
+    }
     const int end = cell_start_(c + 1);
+    int found[32], n = 0;
     for (int k = cell_start_(c); k < end; ++k) {
       const CellEntry& e = entries_(k);
-      // rounding is monotone: yf < lo (float, rounded down) implies y < lo: no point is lost
-      if (yf[0] < e.lo[0] || yf[0] > e.hi[0] || yf[1] < e.lo[1] || yf[1] > e.hi[1] ||
-          yf[2] < e.lo[2] || yf[2] > e.hi[2])
-        continue;
-      const int f = e.facet;
-      if (y[0] < rec_(f, 0) || y[0] > rec_(f, 3) || y[1] < rec_(f, 1) || y[1] > rec_(f, 4) ||
-          y[2] < rec_(f, 2) || y[2] > rec_(f, 5))
-        continue;
-      fn(f);
+      if (!in_box(e, q, y)) continue;
+      prefetch(&prism_(e.facet));
+      found[n++] = e.facet;
+      if (n == 32) {
+        visit(found, n, yf, all, fn);
+        n = 0;
+      }
     }
+    visit(found, n, yf, all, fn);
+  }
+  /// fn(f) for the facets found (all, or those maybe_inside), the records fetched first.
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void visit(int* found, int n, const float yf[3], bool all, F& fn) const {
+    int m = 0;
+    for (int j = 0; j < n; ++j) {
+      if (!all && !maybe_inside(found[j], yf, 1e-9)) continue;
+      prefetch(&rec_(found[j], 0));
+      prefetch(&rec_(found[j], 8));
+      prefetch(&rec_(found[j], 16));
+      found[m++] = found[j];
+    }
+    for (int j = 0; j < m; ++j) fn(found[j]);
   }
 
   /// The xi of kernels::facet_cpp (the same operations, so the same bits); false if the
   /// facet is degenerate.
   KOKKOS_INLINE_FUNCTION bool project(int f, const double y[3], double xi[2]) const {
-    const double det = rec_(f, 18);
+    const double det = rec_(f, DET);
     if (!(det > 0)) return false;
     double b1 = 0, b2 = 0;
     for (int i = 0; i < 3; ++i) {
-      const double d = y[i] - rec_(f, 6 + i);
-      b1 += rec_(f, 9 + i) * d;
-      b2 += rec_(f, 12 + i) * d;
+      const double d = y[i] - rec_(f, X1 + i);
+      b1 += rec_(f, T1 + i) * d;
+      b2 += rec_(f, T2 + i) * d;
     }
-    xi[0] = (rec_(f, 17) * b1 - rec_(f, 16) * b2) / det;
-    xi[1] = (rec_(f, 15) * b2 - rec_(f, 16) * b1) / det;
+    xi[0] = (rec_(f, G22) * b1 - rec_(f, G12) * b2) / det;
+    xi[1] = (rec_(f, G11) * b2 - rec_(f, G12) * b1) / det;
     return true;
   }
   /// The gap of kernels::facet_cpp at xi (the same operations, so the same bits).
@@ -213,8 +297,8 @@ class FacetGrid {
     kernels::facet_shape(xi, N);
     double g = 0;
     for (int i = 0; i < 3; ++i)
-      g += (y[i] - N[0] * rec_(f, 6 + i) - N[1] * gap_(f, i) - N[2] * gap_(f, 3 + i)) *
-           gap_(f, 6 + i);
+      g += (y[i] - N[0] * rec_(f, X1 + i) - N[1] * rec_(f, X2 + i) - N[2] * rec_(f, X3 + i)) *
+           rec_(f, NRM + i);
     return g;
   }
   KOKKOS_INLINE_FUNCTION bool cpp(int f, const double y[3], Hit& h) const {
