@@ -7,6 +7,8 @@
 // there, one thread per slave node (issue 15: ArborX-style search in Views).
 #include <Kokkos_Core.hpp>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "emcontact/types.hpp"
@@ -25,7 +27,7 @@ struct Hit {
 /// cell by GridShape::quantum, a monotone map: a point's quantum below lo or above hi is
 /// outside the exact box, strictly between them inside; only equal quanta need the exact box.
 struct CellEntry {
-  short lo[3], hi[3];
+  unsigned short lo[3], hi[3];  // read as three 16-bit lanes of a 64-bit word (little endian)
   int facet;
 };
 
@@ -60,12 +62,13 @@ struct GridShape {
     return t < 1 ? 0 : (t > dims[i] - 1 ? dims[i] - 1 : static_cast<int>(t));
   }
   /// The quantum of coordinate v along axis i in cell index d: about (v - corner) / h * 2^14,
-  /// clamped to [-1, 2^14 + 1]; built only of rounded monotone operations, so that it never
-  /// decreases with v (the same bits in the build and the queries).
-  KOKKOS_INLINE_FUNCTION short quantum(double v, int i, int d) const {
-    double t = (v - (lo[i] + d * h)) * q_scale;
-    t = t < -1 ? -1 : (t > 16385 ? 16385 : t);
-    return static_cast<short>(static_cast<int>(t + 1) - 1);  // t + 1 >= 0: truncation
+  /// clamped to [0, 2^14 + 2] (< 2^15: a guard bit per 16-bit lane); built only of rounded
+  /// monotone operations, so that it never decreases with v (the same bits in the build and
+  /// the queries).
+  KOKKOS_INLINE_FUNCTION unsigned short quantum(double v, int i, int d) const {
+    double t = (v - (lo[i] + d * h)) * q_scale + 1;
+    t = t < 0 ? 0 : (t > 16386 ? 16386 : t);
+    return static_cast<unsigned short>(t);  // t >= 0: truncation
   }
   std::size_t num_cells() const { return std::size_t(dims[0]) * dims[1] * dims[2]; }
 };
@@ -218,16 +221,20 @@ class FacetGrid {
 #endif
   }
 
-  /// Whether the grown box of entry e holds y (quanta q of y in the entry's cell).
-  KOKKOS_INLINE_FUNCTION bool in_box(const CellEntry& e, const short q[3],
-                                     const double y[3]) const {
-    // one branch each (bitwise, not short-circuit): the lists are scanned in full
-    if ((q[0] < e.lo[0]) | (q[0] > e.hi[0]) | (q[1] < e.lo[1]) | (q[1] > e.hi[1]) |
-        (q[2] < e.lo[2]) | (q[2] > e.hi[2]))
-      return false;  // surely outside
-    if ((q[0] != e.lo[0]) & (q[0] != e.hi[0]) & (q[1] != e.lo[1]) & (q[1] != e.hi[1]) &
-        (q[2] != e.lo[2]) & (q[2] != e.hi[2]))
-      return true;  // surely inside
+  /// Three 16-bit lanes from memory (the fourth cleared).
+  KOKKOS_INLINE_FUNCTION static std::uint64_t lanes(const void* p) {
+    std::uint64_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v & 0x0000FFFFFFFFFFFFull;
+  }
+  /// Whether the grown box of entry e holds y (q: the lanes of y's quanta in e's cell). Lane by
+  /// lane with guard bits (quanta < 2^15, no borrow between lanes): the guard of (q | G) - lo
+  /// stays set iff q >= lo, of (hi | G) - q iff hi >= q; one less for strictly.
+  KOKKOS_INLINE_FUNCTION bool in_box(const CellEntry& e, std::uint64_t q, const double y[3]) const {
+    const std::uint64_t G = 0x0000800080008000ull, one = 0x0000000100010001ull;
+    const std::uint64_t a = (q | G) - lanes(e.lo), b = (lanes(e.hi) | G) - q;
+    if ((a & b & G) != G) return false;                 // surely outside
+    if (((a - one) & (b - one) & G) == G) return true;  // surely inside
     const int f = e.facet;
     return !(y[0] < box_(f, 0) || y[0] > box_(f, 3) || y[1] < box_(f, 1) || y[1] > box_(f, 4) ||
              y[2] < box_(f, 2) || y[2] > box_(f, 5));
@@ -242,12 +249,13 @@ class FacetGrid {
     int d[3];
     const int c = shape_.cell_of(y, d);
     if (c < 0) return;
-    short q[3];
+    unsigned short qs[4] = {0, 0, 0, 0};
     float yf[3];
     for (int i = 0; i < 3; ++i) {
-      q[i] = shape_.quantum(y[i], i, d[i]);
+      qs[i] = shape_.quantum(y[i], i, d[i]);
       yf[i] = static_cast<float>(y[i] - shape_.lo[i]);
     }
+    const std::uint64_t q = lanes(qs);
     const int end = cell_start_(c + 1);
     int found[32], n = 0;
     for (int k = cell_start_(c); k < end; ++k) {
