@@ -144,31 +144,37 @@ int scan_cells(Kokkos::View<int*, ExecSpace> start) {
 
 /// Every cell's facets in increasing id order: in any order with atomics, then sorted (the
 /// lists are short); the order of the candidates, hence ties, never depends on the threads.
-void fill_cells(const GridShape& s, FacetGrid::Boxes box, Kokkos::View<const int*, ExecSpace> start,
+void fill_cells(const GridShape& s, FacetGrid::Boxes box,
+                Kokkos::View<const Prism*, ExecSpace> prism,
+                Kokkos::View<const int*, ExecSpace> start,
                 Kokkos::View<CellEntry*, ExecSpace> entries) {
   Kokkos::View<int*, ExecSpace> next("emc::grid_next", start.extent(0) - 1);
+  Kokkos::View<int*, ExecSpace> ids(Kokkos::ViewAllocateWithoutInitializing("emc::grid_ids"),
+                                    entries.extent(0));
   Kokkos::parallel_for(
       "emcontact::contact::grid_fill", Policy(0, box.extent(0)), KOKKOS_LAMBDA(const int f) {
-        for_each_cell(s, box, f, [&](int c) {
-          entries(start(c) + Kokkos::atomic_fetch_add(&next(c), 1)).facet = f;
-        });
+        for_each_cell(s, box, f,
+                      [&](int c) { ids(start(c) + Kokkos::atomic_fetch_add(&next(c), 1)) = f; });
       });
   Kokkos::parallel_for(
       "emcontact::contact::grid_sort", Policy(0, next.extent(0)), KOKKOS_LAMBDA(const int c) {
         for (int k = start(c) + 1; k < start(c + 1); ++k) {  // insertion sort
-          const int f = entries(k).facet;
+          const int f = ids(k);
           int j = k;
-          for (; j > start(c) && entries(j - 1).facet > f; --j)
-            entries(j).facet = entries(j - 1).facet;
-          entries(j).facet = f;
+          for (; j > start(c) && ids(j - 1) > f; --j) ids(j) = ids(j - 1);
+          ids(j) = f;
         }
         const int d[3] = {c % s.dims[0], c / s.dims[0] % s.dims[1], c / s.dims[0] / s.dims[1]};
-        for (int k = start(c); k < start(c + 1); ++k) {
-          const int f = entries(k).facet;
+        for (int k = start(c); k < start(c + 1); ++k) {  // the entries, written in order
+          const int f = ids(k);
+          CellEntry e;
+          e.facet = f;
+          e.prism = prism(f);
           for (int i = 0; i < 3; ++i) {
-            entries(k).lo[i] = s.quantum(box(f, i), i, d[i]);
-            entries(k).hi[i] = s.quantum(box(f, 3 + i), i, d[i]);
+            e.lo[i] = s.quantum(box(f, i), i, d[i]);
+            e.hi[i] = s.quantum(box(f, 3 + i), i, d[i]);
           }
+          entries(k) = e;
         }
       });
 }
@@ -177,8 +183,7 @@ void fill_cells(const GridShape& s, FacetGrid::Boxes box, Kokkos::View<const int
 
 // ALGORITHM.md §2: the grid of the grown boxes, built in parallel.
 FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
-    : prism_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_prisms"), facets.extent(0)),
-      rec_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_records"), facets.extent(0)),
+    : rec_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_records"), facets.extent(0)),
       box_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_boxes"), facets.extent(0)) {
   const int nf = static_cast<int>(facets.extent(0));
   fill_records(facets, x, margin, rec_, box_);
@@ -199,13 +204,15 @@ FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
     shape_.dims[i] = nf ? int(std::floor((b.hi[i] - b.lo[i]) * shape_.inv_h)) + 1 : 1;
   }
   const GridShape s = shape_;
-  fill_prisms(s, rec_, prism_);
+  Kokkos::View<Prism*, ExecSpace> prism(Kokkos::ViewAllocateWithoutInitializing("emc::grid_prisms"),
+                                        nf);
+  fill_prisms(s, rec_, prism);
   cell_start_ = Kokkos::View<int*, ExecSpace>("emc::grid_start", s.num_cells() + 1);
   count_cells(s, box_, cell_start_);
   const int total = scan_cells(cell_start_);
   entries_ = Kokkos::View<CellEntry*, ExecSpace>(
       Kokkos::ViewAllocateWithoutInitializing("emc::grid_entries"), total);
-  fill_cells(s, box_, cell_start_, entries_);
+  fill_cells(s, box_, prism, cell_start_, entries_);
 }
 
 FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,

@@ -23,20 +23,23 @@ struct Hit {
   bool inside = false;  ///< CPP inside the facet (up to the tolerance asked)
 };
 
-/// One entry of a cell's list (16 bytes): the facet id and its grown box quantized in the
-/// cell by GridShape::quantum, a monotone map: a point's quantum below lo or above hi is
-/// outside the exact box, strictly between them inside; only equal quanta need the exact box.
-struct CellEntry {
-  unsigned short lo[3], hi[3];  // read as three 16-bit lanes of a 64-bit word (little endian)
-  int facet;
-};
-
 /// Per facet, a cheap test that a point's CPP lies outside it (32 bytes): the dual basis
 /// a1, a2 of (tau_xi, tau_eta) and c_k = a_k . (x_m1 - origin), in float, so that
 /// xi ~ a1 . (y - origin) - c1 and eta ~ a2 . (y - origin) - c2. A facet too distorted for
 /// float bounds gets a = 0, c = -1/2: its estimate (1/2, 1/2) always passes.
 struct Prism {
   float a1[3], a2[3], c1, c2;
+};
+
+/// One entry of a cell's list (48 bytes): the facet id, its grown box quantized in the cell by
+/// GridShape::quantum, a monotone map (a point's quantum below lo or above hi is outside the
+/// exact box, strictly between them inside; only equal quanta need the exact box), and its
+/// Prism: a query reads its cell's list, then only the records of the facets left (measured
+/// faster than a separate Prism per facet: one dependent memory access less).
+struct CellEntry {
+  unsigned short lo[3], hi[3];  // read as three 16-bit lanes of a 64-bit word (little endian)
+  int facet;
+  Prism prism;
 };
 
 /// The grid's geometry: origin, cell size and cells per direction.
@@ -182,7 +185,6 @@ class FacetGrid {
   double tie_ = 0;  ///< |g_N| closer than this are ties (1e-14 of the mean facet size, §2)
   Kokkos::View<int*, ExecSpace> cell_start_;
   Kokkos::View<CellEntry*, ExecSpace> entries_;
-  Kokkos::View<Prism*, ExecSpace> prism_;
   Records rec_;
   Boxes box_;
 
@@ -198,8 +200,7 @@ class FacetGrid {
   /// Whether the CPP of y (yf: y - origin in float) on facet f may lie inside it up to tol:
   /// false only when the float estimate of kernels::facet_outside, with a bound of its
   /// round-off (below 8 2^-24 of the sum of the magnitudes summed), is beyond tol.
-  KOKKOS_INLINE_FUNCTION bool maybe_inside(int f, const float yf[3], double tol) const {
-    const Prism& p = prism_(f);
+  KOKKOS_INLINE_FUNCTION static bool maybe_inside(const Prism& p, const float yf[3], double tol) {
     float xi = -p.c1, eta = -p.c2;
     float size = 1 + (p.c1 < 0 ? -p.c1 : p.c1) + (p.c2 < 0 ? -p.c2 : p.c2);
     for (int i = 0; i < 3; ++i) {  // yf >= 0 inside the grid
@@ -241,9 +242,9 @@ class FacetGrid {
   }
 
   /// Calls fn(f) for every facet whose grown box holds y (all) or, if not all, only for
-  /// those that are maybe_inside, in increasing id order. The cell's list is scanned first and
-  /// the records of the facets found are fetched together (batches of at most 32), so that
-  /// their memory latencies overlap.
+  /// those that are maybe_inside, in increasing id order. The cell's list is scanned first
+  /// and the records of the facets found are prefetched together (batches of at most 32), so
+  /// that their memory latencies overlap.
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_box(const double y[3], bool all, F&& fn) const {
     int d[3];
@@ -261,27 +262,21 @@ class FacetGrid {
     for (int k = cell_start_(c); k < end; ++k) {
       const CellEntry& e = entries_(k);
       if (!in_box(e, q, y)) continue;
-      prefetch(&prism_(e.facet));
+      if (!all && !maybe_inside(e.prism, yf, 1e-9)) continue;
+      prefetch(&rec_(e.facet, 0));
+      prefetch(&rec_(e.facet, 8));
+      prefetch(&rec_(e.facet, 16));
       found[n++] = e.facet;
       if (n == 32) {
-        visit(found, n, yf, all, fn);
+        visit(found, n, fn);
         n = 0;
       }
     }
-    visit(found, n, yf, all, fn);
+    visit(found, n, fn);
   }
-  /// fn(f) for the facets found (all, or those maybe_inside), the records fetched first.
   template <class F>
-  KOKKOS_INLINE_FUNCTION void visit(int* found, int n, const float yf[3], bool all, F& fn) const {
-    int m = 0;
-    for (int j = 0; j < n; ++j) {
-      if (!all && !maybe_inside(found[j], yf, 1e-9)) continue;
-      prefetch(&rec_(found[j], 0));
-      prefetch(&rec_(found[j], 8));
-      prefetch(&rec_(found[j], 16));
-      found[m++] = found[j];
-    }
-    for (int j = 0; j < m; ++j) fn(found[j]);
+  KOKKOS_INLINE_FUNCTION static void visit(const int* found, int n, F& fn) {
+    for (int j = 0; j < n; ++j) fn(found[j]);
   }
 
   /// The xi of kernels::facet_cpp (the same operations, so the same bits); false if the

@@ -399,3 +399,36 @@ TEST(FacetGrid, BuildIsDeterministicAndListsSorted) {
   const auto y = near_points(2000, 13, -0.1, 1.1, 0.08);
   for (int t = 0; t < 2000; ++t) expect_same(a.locate(&y[3 * t]), b.locate(&y[3 * t]), t);
 }
+
+// Slivers (angles far below the float test's limit) and degenerate facets (collinear or
+// repeated nodes) among regular ones: still the brute-force bits (the exact CPP decides).
+TEST(FacetGrid, DistortedFacetsMatchBruteForce) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(8, facets, x);
+  auto node = [&x](double a, double b, double c) {
+    x.insert(x.end(), {a, b, c});
+    return static_cast<int>(x.size() / 3 - 1);
+  };
+  for (int k = 0; k < 8; ++k) {
+    const double o = 0.1 * k;
+    facets.push_back(
+        {node(o, 0.5, 0.02), node(o + 0.3, 0.5, 0.02), node(o + 0.15, 0.5 + 1e-7, 0.02)});
+    facets.push_back({node(o, 0.3, 0.0), node(o + 0.1, 0.3, 0.0), node(o + 0.2, 0.3, 0.0)});
+    const int r = node(o, 0.7, 0.01);
+    facets.push_back({r, r, node(o + 0.1, 0.75, 0.01)});
+  }
+  const double margin = 0.05;
+  const emc::contact::FacetGrid grid(facets, x, margin);
+  const auto y = near_points(4000, 17, 0.0, 1.0, 0.05);
+  int found = 0;
+  for (int t = 0; t < 4000; ++t) {
+    const double* p = &y[3 * t];
+    const int current = t % 2 ? -1 : static_cast<int>(facets.size()) - 1 - t % 24;
+    const auto a = grid.locate(p, current, 1e-3);
+    expect_same(a, brute_force(p, facets, x, margin, grid.tie(), current, 1e-3), t);
+    expect_same(grid.locate(p), brute_force(p, facets, x, margin, grid.tie()), t);
+    found += a.facet >= 128;
+  }
+  EXPECT_GT(found, 10);  // some land on the slivers
+}
