@@ -3,7 +3,8 @@
 // parallel batch query. Counters are per core: Kokkos is Serial in Debian's Trilinos.
 //   BM_ContactSearch          grid built from host containers, then 100k random queries
 //   BM_ContactGridBuild       the parallel build alone, from Views
-//   BM_ContactQueries         100k random-order queries, one locate() each
+//   BM_ContactQueries         100k random-order queries, one locate() each (/32: 2048 facets,
+//                             all in cache: the cost of the computation alone)
 //   BM_ContactQueriesOrdered  the same in spatial order (as slave nodes numbered along a surface)
 //   BM_ContactQueriesBatch    random order through locate_all (host vectors, Morton sort included)
 //   BM_ContactLocateAll       random order through locate_all on Views (Morton sort included)
