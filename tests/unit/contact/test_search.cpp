@@ -432,3 +432,22 @@ TEST(FacetGrid, DistortedFacetsMatchBruteForce) {
   }
   EXPECT_GT(found, 10);  // some land on the slivers
 }
+
+// No facets, no points: nothing found, nothing to do.
+TEST(FacetGrid, EmptyGridAndEmptyBatch) {
+  const emc::contact::FacetGrid empty(std::vector<std::array<int, 3>>{}, std::vector<double>{},
+                                      0.1);
+  const double y[3] = {0, 0, 0};
+  EXPECT_EQ(empty.locate(y).facet, -1);
+  EXPECT_EQ(empty.locate(y, -1, 0.5).facet, -1);
+  std::vector<emc::contact::Hit> hits;
+  empty.locate_all(y, 1, hits);
+  ASSERT_EQ(hits.size(), 1u);
+  EXPECT_EQ(hits[0].facet, -1);
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(4, facets, x);
+  const emc::contact::FacetGrid grid(facets, x, 0.05);
+  grid.locate_all(nullptr, 0, hits);
+  EXPECT_TRUE(hits.empty());
+}
