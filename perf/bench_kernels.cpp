@@ -2,7 +2,6 @@
 // Debian's Trilinos, so one process = one core.
 //   BM_EmTet4          energy-momentum force + exact 12x12 tangent of one element (kernel only)
 //   BM_Assembly        the whole assembly driver: import, kernels, scatter into the FECrsMatrix
-//   BM_ContactSearch   slave-node queries (grid + CPP) against a surface of about 100k facets
 //   BM_Elimination     one Newton iteration's elimination: P^T A P + D, P^T g and P dq
 //                      (...NewPattern: after an active-set change; ...Rigid: the masked path)
 #include <benchmark/benchmark.h>
@@ -12,7 +11,6 @@
 #include <cmath>
 #include <random>
 
-#include "emcontact/contact/search.hpp"
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/linalg/elimination.hpp"
 #include "kernels/newton_tet4.hpp"
@@ -75,109 +73,6 @@ static void BM_AssemblyAtomic(benchmark::State& state) {
 }
 BENCHMARK(BM_Assembly)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AssemblyAtomic)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
-
-/// A bumpy surface of 2 n^2 facets (n = 224: about 100k) and 100k points near it.
-struct BumpySurface {
-  std::vector<std::array<int, 3>> facets;
-  std::vector<double> x, q;
-  double margin;
-  explicit BumpySurface(int n);
-};
-
-BumpySurface::BumpySurface(int n) : margin(0.5 / n) {
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double px = double(i) / n, py = double(j) / n;
-      x.insert(x.end(), {px, py, 0.05 * std::sin(6 * px) * std::cos(4 * py)});
-    }
-  auto id = [n](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> d(0, 1), dz(-0.002, 0.002);
-  for (int t = 0; t < 100000; ++t) {
-    const double px = d(rng), py = d(rng);
-    q.insert(q.end(), {px, py, 0.05 * std::sin(6 * px) * std::cos(4 * py) + dz(rng)});
-  }
-}
-
-/// Locates every query point (3 coordinates each); returns how many found a facet.
-static long locate_all(const emc::contact::FacetGrid& grid, const std::vector<double>& q) {
-  long found = 0;
-  for (std::size_t t = 0; t < q.size() / 3; ++t) found += grid.locate(&q[3 * t]).facet >= 0;
-  return found;
-}
-
-/// The counters of the contact benchmarks: surface size and queries per second.
-static void query_counters(benchmark::State& state, std::size_t facets, std::size_t queries) {
-  state.counters["facets"] = static_cast<double>(facets);
-  state.counters["queries_per_s"] =
-      benchmark::Counter(double(state.iterations()) * queries, benchmark::Counter::kIsRate);
-}
-
-static void BM_ContactSearch(benchmark::State& state) {
-  const BumpySurface s(static_cast<int>(state.range(0)));
-  const auto& [facets, x, q, margin] = s;
-  long found = 0;
-  for (auto _ : state) {
-    emc::contact::FacetGrid grid(facets, x, margin);  // rebuilt every step in the solver
-    found += locate_all(grid, q);
-  }
-  benchmark::DoNotOptimize(found);
-  query_counters(state, facets.size(), q.size() / 3);
-}
-BENCHMARK(BM_ContactSearch)->Arg(224)->Unit(benchmark::kMillisecond);
-
-// The queries alone, against a grid built once.
-static void BM_ContactQueries(benchmark::State& state) {
-  const BumpySurface s(static_cast<int>(state.range(0)));
-  const auto& [facets, x, q, margin] = s;
-  emc::contact::FacetGrid grid(facets, x, margin);
-  long found = 0;
-  for (auto _ : state) found += locate_all(grid, q);
-  benchmark::DoNotOptimize(found);
-  query_counters(state, facets.size(), q.size() / 3);
-}
-BENCHMARK(BM_ContactQueries)->Arg(224)->Unit(benchmark::kMillisecond);
-
-// The same queries in spatial order (rows of 1/64 in y, then x), as slave nodes numbered
-// along the surface come: the facets a query needs are then in cache.
-static void BM_ContactQueriesOrdered(benchmark::State& state) {
-  const BumpySurface s(static_cast<int>(state.range(0)));
-  const auto& [facets, x, q, margin] = s;
-  std::vector<int> order(q.size() / 3);
-  for (std::size_t t = 0; t < order.size(); ++t) order[t] = static_cast<int>(t);
-  auto key = [&](int t) { return std::make_pair(int(q[3 * t + 1] * 64), q[3 * t]); };
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
-  std::vector<double> sorted;
-  for (int t : order) sorted.insert(sorted.end(), {q[3 * t], q[3 * t + 1], q[3 * t + 2]});
-  emc::contact::FacetGrid grid(facets, x, margin);
-  long found = 0;
-  for (auto _ : state) found += locate_all(grid, sorted);
-  benchmark::DoNotOptimize(found);
-  query_counters(state, facets.size(), sorted.size() / 3);
-}
-BENCHMARK(BM_ContactQueriesOrdered)->Arg(224)->Unit(benchmark::kMillisecond);
-
-// The random-order queries through the batch query, which visits them in grid-cell order (its
-// radix sort included).
-static void BM_ContactQueriesBatch(benchmark::State& state) {
-  const BumpySurface s(static_cast<int>(state.range(0)));
-  const auto& [facets, x, q, margin] = s;
-  emc::contact::FacetGrid grid(facets, x, margin);
-  std::vector<emc::contact::Hit> hits;
-  long found = 0;
-  for (auto _ : state) {
-    grid.locate_all(q.data(), q.size() / 3, hits);
-    for (const auto& h : hits) found += h.facet >= 0;
-  }
-  benchmark::DoNotOptimize(found);
-  query_counters(state, facets.size(), q.size() / 3);
-}
-BENCHMARK(BM_ContactQueriesBatch)->Arg(224)->Unit(benchmark::kMillisecond);
 
 /// The elimination of one Newton iteration (ALGORITHM.md §3) on the box of BM_Assembly: the
 /// bottom face fixed (Dirichlet) and every top-face node a stick slave with a dummy beta on its

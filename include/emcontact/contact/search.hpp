@@ -2,10 +2,16 @@
 // Contact search (ALGORITHM.md §2): a uniform grid of the master facets' bounding boxes
 // (expanded by a margin), rebuilt from the current positions whenever it is needed, and the
 // projection of a point on the closest valid facet among the candidates of its cell.
+// Everything lives in Views on the node's device (built with labelled parallel kernels); the
+// queries are device functions, so a FacetGrid copied by value into a kernel can be queried
+// there, one thread per slave node (issue 15: ArborX-style search in Views).
 #include <Kokkos_Core.hpp>
 #include <array>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
+#include "emcontact/types.hpp"
 #include "kernels/facet.hpp"
 
 namespace emc::contact {
@@ -17,9 +23,75 @@ struct Hit {
   bool inside = false;  ///< CPP inside the facet (up to the tolerance asked)
 };
 
+/// Per facet, a cheap test that a point's CPP lies outside it (32 bytes): the dual basis
+/// a1, a2 of (tau_xi, tau_eta) and c_k = a_k . (x_m1 - origin), in float, so that
+/// xi ~ a1 . (y - origin) - c1 and eta ~ a2 . (y - origin) - c2. A facet too distorted for
+/// float bounds gets a = 0, c = -1/2: its estimate (1/2, 1/2) always passes.
+struct Prism {
+  float a1[3], a2[3], c1, c2;
+};
+
+/// One entry of a cell's list (48 bytes): the facet id, its grown box quantized in the cell by
+/// GridShape::quantum, a monotone map (a point's quantum below lo or above hi is outside the
+/// exact box, strictly between them inside; only equal quanta need the exact box), and its
+/// Prism: a query reads its cell's list, then only the records of the facets left (measured
+/// faster than a separate Prism per facet: one dependent memory access less).
+struct CellEntry {
+  unsigned short lo[3], hi[3];  // read as three 16-bit lanes of a 64-bit word (little endian)
+  int facet;
+  Prism prism;
+};
+
+/// The grid's geometry: origin, cell size and cells per direction.
+struct GridShape {
+  double lo[3] = {1e300, 1e300, 1e300};
+  double h = 1;
+  double inv_h = 1;        ///< 1 / h: cells and quanta by products (the same in build and queries)
+  double q_scale = 16384;  ///< 2^14 / h
+  int dims[3] = {1, 1, 1};
+
+  /// The cell holding y (its indices in d), or -1 outside the grid.
+  KOKKOS_INLINE_FUNCTION int cell_of(const double y[3], int d[3]) const {
+    for (int i = 0; i < 3; ++i) {
+      const double t = (y[i] - lo[i]) * inv_h;
+      if (!(t >= 0 && t < dims[i])) return -1;
+      d[i] = static_cast<int>(t);  // t >= 0: the floor
+    }
+    return (d[2] * dims[1] + d[1]) * dims[0] + d[0];
+  }
+  /// The cell index along axis i of coordinate v, clamped to the grid.
+  KOKKOS_INLINE_FUNCTION int clamp_index(double v, int i) const {
+    const double t = (v - lo[i]) * inv_h;
+    return t < 1 ? 0 : (t > dims[i] - 1 ? dims[i] - 1 : static_cast<int>(t));
+  }
+  /// The quantum of coordinate v along axis i in cell index d: about (v - corner) / h * 2^14,
+  /// clamped to [0, 2^14 + 2] (< 2^15: a guard bit per 16-bit lane); built only of rounded
+  /// monotone operations, so that it never decreases with v (the same bits in the build and
+  /// the queries).
+  KOKKOS_INLINE_FUNCTION unsigned short quantum(double v, int i, int d) const {
+    double t = (v - (lo[i] + d * h)) * q_scale + 1;
+    t = t < 0 ? 0 : (t > 16386 ? 16386 : t);
+    return static_cast<unsigned short>(t);  // t >= 0: truncation
+  }
+  std::size_t num_cells() const { return std::size_t(dims[0]) * dims[1] * dims[2]; }
+};
+
 class FacetGrid {
  public:
-  /// Bins the facets (geometry node ids into x, 3 per node) with their boxes grown by margin.
+  using FacetsView = Kokkos::View<const int* [3], ExecSpace>;
+  using PointsView = Kokkos::View<const double* [3], ExecSpace>;
+  /// Per facet, what the CPP needs, in three cache lines read together: x_m1, tau_xi,
+  /// tau_eta, g11, g12, g22, det, n, x_m2, x_m3 and |tau_xi x tau_eta| (offsets below).
+  using Records = Kokkos::View<double* [24], Kokkos::LayoutRight, ExecSpace>;
+  enum { X1 = 0, T1 = 3, T2 = 6, G11 = 9, G12 = 10, G22 = 11, DET = 12, NRM = 13, X2 = 16 };
+  enum { X3 = 19, AREA = 22 };
+  /// Per facet, its exact grown box (lo, hi), read only when the quantized box cannot decide.
+  using Boxes = Kokkos::View<double* [6], Kokkos::LayoutRight, ExecSpace>;
+
+  /// Bins the facets (3 indices into x each) with their boxes grown by margin, in parallel.
+  /// Only the records are kept: facets and x may go once the grid is built.
+  FacetGrid(FacetsView facets, PointsView x, double margin);
+  /// The same from host containers (geometry node ids into x, 3 coordinates per node).
   FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
             double margin);
 
@@ -27,56 +99,217 @@ class FacetGrid {
   /// 1e-9, the smallest |g_N|, ties to the lowest facet id. If `current` >= 0 it is kept while
   /// its CPP is inside up to `hyst`. If none is valid and `current` >= 0, the candidate least
   /// outside is returned with inside = (outside <= hyst); otherwise facet = -1.
-  Hit locate(const double y[3], int current = -1, double hyst = 0) const;
+  KOKKOS_INLINE_FUNCTION Hit locate(const double y[3], int current = -1, double hyst = 0) const {
+    const double tol = 1e-9;
+    if (current >= 0) {
+      Hit h;
+      if (cpp(current, y, h) && kernels::facet_outside(h.xi) <= (hyst < tol ? tol : hyst)) {
+        h.inside = true;
+        return h;
+      }
+    }
+    Hit best, least;
+    double least_out = 1e300;
+    // without a current facet only valid CPPs count: the others are skipped by the float test
+    const bool all = current >= 0;
+    for_each_box(y, all, [&](int f) {
+      double xi[2];
+      if (!project(f, y, xi)) return;
+      const double out = kernels::facet_outside(xi);
+      if (out <= tol) {  // §2: a valid CPP; the gap only for these
+        const double g = gap(f, y, xi);
+        if (best.facet < 0 || abs(g) < abs(best.gap) - tie_) set(best, f, xi, g, true);
+      }
+      if (out < least_out) {  // the gap of the least outside is computed at the end
+        least_out = out;
+        set(least, f, xi, 0, false);
+      }
+    });
+    if (best.facet >= 0 || current < 0) return best;
+    if (least.facet < 0) {  // nothing near: keep the current facet, extrapolated
+      cpp(current, y, least);
+      least_out = kernels::facet_outside(least.xi);
+    } else {
+      least.gap = gap(least.facet, y, least.xi);
+    }
+    least.inside = least_out <= hyst;
+    return least;
+  }
 
-  /// locate(y_k) for n points (3 coordinates each): hits[k] for point k, the same bits, but
-  /// visited in the Morton order of their grid cells (a radix sort), so that
+  /// locate(y_k) for every point: hits(k), the same bits, in a labelled parallel_for over
+  /// the points visited in the Morton order of their grid cells (a parallel bin sort), so that
   /// consecutive queries read the same cell lists and facet records, as tree searches sort
   /// their queries (ArborX). For many queries in no particular order.
+  void locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) const;
+  /// The same for n points (3 coordinates each) on the host.
   void locate_all(const double* y, std::size_t n, std::vector<Hit>& hits) const;
-
-  std::size_t num_cells() const { return cell_start_.extent(0) - 1; }
 
   /// Calls fn(hit, outside) for every facet whose grown box holds y, with its CPP (hit.gap,
   /// hit.xi) and kernels::facet_outside(hit.xi); degenerate facets are skipped. Facets come in
   /// increasing id order.
   template <class F>
-  void for_each_candidate(const double y[3], F&& fn) const {
-    int d[3];
-    const int c = cell_of(y, d);
-    if (c < 0) return;
-    for (int k = cell_start_(c); k < cell_start_(c + 1); ++k) {
-      const int f = cell_facets_(k);
-      const double* b = data_[f].box;
-      if (y[0] < b[0] || y[0] > b[3] || y[1] < b[1] || y[1] > b[4] || y[2] < b[2] || y[2] > b[5])
-        continue;
+  KOKKOS_INLINE_FUNCTION void for_each_candidate(const double y[3], F&& fn) const {
+    for_each_box(y, true, [&](int f) {
       Hit h;
       if (cpp(f, y, h)) fn(h, kernels::facet_outside(h.xi));
-    }
+    });
   }
 
   /// The frame and metric of facet f in the grid's configuration.
-  const kernels::FacetMetric& metric(int f) const { return data_[f].metric; }
+  KOKKOS_INLINE_FUNCTION kernels::FacetMetric metric(int f) const {
+    kernels::FacetMetric m;
+    for (int i = 0; i < 3; ++i) {
+      m.f.t1[i] = rec_(f, T1 + i);
+      m.f.t2[i] = rec_(f, T2 + i);
+      m.f.n[i] = rec_(f, NRM + i);
+    }
+    m.f.area2 = rec_(f, AREA);
+    m.g11 = rec_(f, G11);
+    m.g12 = rec_(f, G12);
+    m.g22 = rec_(f, G22);
+    m.det = rec_(f, DET);
+    return m;
+  }
+
+  /// |g_N| closer than this are ties, broken to the lowest facet id (§2).
+  KOKKOS_INLINE_FUNCTION double tie() const { return tie_; }
+  std::size_t num_cells() const { return shape_.num_cells(); }
+  KOKKOS_INLINE_FUNCTION int num_facets() const { return static_cast<int>(rec_.extent(0)); }
+  const GridShape& shape() const { return shape_; }
+  /// The cell lists (CSR): cell c holds entries cell_start()(c) .. cell_start()(c + 1) - 1.
+  Kokkos::View<const int*, ExecSpace> cell_start() const { return cell_start_; }
+  Kokkos::View<const CellEntry*, ExecSpace> cell_entries() const { return entries_; }
 
  private:
-  const std::vector<std::array<int, 3>>& facets_;
-  const std::vector<double>& x_;
-  double lo_[3], h_;
-  int dims_[3];
-  Kokkos::View<int*, Kokkos::HostSpace> cell_start_, cell_facets_;
-  /// Per facet, in one record (one cache-friendly read per candidate): the grown bounding box
-  /// and what the CPP of §2 needs, computed once per grid: the nodes, tau_xi, tau_eta, n and
-  /// the 2x2 metric (g11, g12, g22, det), so that cpp() gives kernels::facet_cpp's bits.
-  struct FacetData {
-    double box[6];
-    double xm[3][3];
-    kernels::FacetMetric metric;
-  };
-  std::vector<FacetData> data_;
-  void precompute(int f, double margin);
+  GridShape shape_;
+  double tie_ = 0;  ///< |g_N| closer than this are ties (1e-14 of the mean facet size, §2)
+  Kokkos::View<int*, ExecSpace> cell_start_;
+  Kokkos::View<CellEntry*, ExecSpace> entries_;
+  Records rec_;
+  Boxes box_;
 
-  int cell_of(const double y[3], int d[3]) const;
-  bool cpp(int f, const double y[3], Hit& h) const;
+  KOKKOS_INLINE_FUNCTION static double abs(double v) { return v < 0 ? -v : v; }
+  KOKKOS_INLINE_FUNCTION static void set(Hit& h, int f, const double xi[2], double g, bool in) {
+    h.facet = f;
+    h.xi[0] = xi[0];
+    h.xi[1] = xi[1];
+    h.gap = g;
+    h.inside = in;
+  }
+
+  /// Whether the CPP of y (yf: y - origin in float) on facet f may lie inside it up to tol:
+  /// false only when the float estimate of kernels::facet_outside, with a bound of its
+  /// round-off (below 8 2^-24 of the sum of the magnitudes summed), is beyond tol.
+  KOKKOS_INLINE_FUNCTION static bool maybe_inside(const Prism& p, const float yf[3], double tol) {
+    float xi = -p.c1, eta = -p.c2;
+    float size = 1 + (p.c1 < 0 ? -p.c1 : p.c1) + (p.c2 < 0 ? -p.c2 : p.c2);
+    for (int i = 0; i < 3; ++i) {  // yf >= 0 inside the grid
+      xi += p.a1[i] * yf[i];
+      eta += p.a2[i] * yf[i];
+      size += ((p.a1[i] < 0 ? -p.a1[i] : p.a1[i]) + (p.a2[i] < 0 ? -p.a2[i] : p.a2[i])) * yf[i];
+    }
+    float out = xi + eta - 1;  // -min(1 - xi - eta, xi, eta)
+    out = out > -xi ? out : -xi;
+    out = out > -eta ? out : -eta;
+    return out <= static_cast<float>(tol) + 1e-5f * size;
+  }
+
+  KOKKOS_INLINE_FUNCTION static void prefetch(const void* p) {
+#if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
+    __builtin_prefetch(p);
+#else
+    (void)p;
+#endif
+  }
+
+  /// Three 16-bit lanes from memory (the fourth cleared).
+  KOKKOS_INLINE_FUNCTION static std::uint64_t lanes(const void* p) {
+    std::uint64_t v;
+    std::memcpy(&v, p, sizeof v);
+    return v & 0x0000FFFFFFFFFFFFull;
+  }
+  /// Whether the grown box of entry e holds y (q: the lanes of y's quanta in e's cell). Lane by
+  /// lane with guard bits (quanta < 2^15, no borrow between lanes): the guard of (q | G) - lo
+  /// stays set iff q >= lo, of (hi | G) - q iff hi >= q; one less for strictly.
+  KOKKOS_INLINE_FUNCTION bool in_box(const CellEntry& e, std::uint64_t q, const double y[3]) const {
+    const std::uint64_t G = 0x0000800080008000ull, one = 0x0000000100010001ull;
+    const std::uint64_t a = (q | G) - lanes(e.lo), b = (lanes(e.hi) | G) - q;
+    if ((a & b & G) != G) return false;                 // surely outside
+    if (((a - one) & (b - one) & G) == G) return true;  // surely inside
+    const int f = e.facet;
+    return !(y[0] < box_(f, 0) || y[0] > box_(f, 3) || y[1] < box_(f, 1) || y[1] > box_(f, 4) ||
+             y[2] < box_(f, 2) || y[2] > box_(f, 5));
+  }
+
+  /// Calls fn(f) for every facet whose grown box holds y (all) or, if not all, only for
+  /// those that are maybe_inside, in increasing id order. The cell's list is scanned first
+  /// and the records of the facets found are prefetched together (batches of at most 32), so
+  /// that their memory latencies overlap.
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void for_each_box(const double y[3], bool all, F&& fn) const {
+    int d[3];
+    const int c = shape_.cell_of(y, d);
+    if (c < 0) return;
+    unsigned short qs[4] = {0, 0, 0, 0};
+    float yf[3];
+    for (int i = 0; i < 3; ++i) {
+      qs[i] = shape_.quantum(y[i], i, d[i]);
+      yf[i] = static_cast<float>(y[i] - shape_.lo[i]);
+    }
+    const std::uint64_t q = lanes(qs);
+    const int end = cell_start_(c + 1);
+    int found[32], n = 0;
+    for (int k = cell_start_(c); k < end; ++k) {
+      const CellEntry& e = entries_(k);
+      if (!in_box(e, q, y)) continue;
+      if (!all && !maybe_inside(e.prism, yf, 1e-9)) continue;
+      prefetch(&rec_(e.facet, 0));
+      prefetch(&rec_(e.facet, 8));
+      prefetch(&rec_(e.facet, 16));
+      found[n++] = e.facet;
+      if (n == 32) {
+        visit(found, n, fn);
+        n = 0;
+      }
+    }
+    visit(found, n, fn);
+  }
+  template <class F>
+  KOKKOS_INLINE_FUNCTION static void visit(const int* found, int n, F& fn) {
+    for (int j = 0; j < n; ++j) fn(found[j]);
+  }
+
+  /// The xi of kernels::facet_cpp (the same operations, so the same bits); false if the
+  /// facet is degenerate.
+  KOKKOS_INLINE_FUNCTION bool project(int f, const double y[3], double xi[2]) const {
+    const double det = rec_(f, DET);
+    if (!(det > 0)) return false;
+    double b1 = 0, b2 = 0;
+    for (int i = 0; i < 3; ++i) {
+      const double d = y[i] - rec_(f, X1 + i);
+      b1 += rec_(f, T1 + i) * d;
+      b2 += rec_(f, T2 + i) * d;
+    }
+    xi[0] = (rec_(f, G22) * b1 - rec_(f, G12) * b2) / det;
+    xi[1] = (rec_(f, G11) * b2 - rec_(f, G12) * b1) / det;
+    return true;
+  }
+  /// The gap of kernels::facet_cpp at xi (the same operations, so the same bits).
+  KOKKOS_INLINE_FUNCTION double gap(int f, const double y[3], const double xi[2]) const {
+    double N[3];
+    kernels::facet_shape(xi, N);
+    double g = 0;
+    for (int i = 0; i < 3; ++i)
+      g += (y[i] - N[0] * rec_(f, X1 + i) - N[1] * rec_(f, X2 + i) - N[2] * rec_(f, X3 + i)) *
+           rec_(f, NRM + i);
+    return g;
+  }
+  KOKKOS_INLINE_FUNCTION bool cpp(int f, const double y[3], Hit& h) const {
+    h.facet = f;
+    if (!project(f, y, h.xi)) return false;
+    h.gap = gap(f, y, h.xi);
+    return true;
+  }
 };
 
 }  // namespace emc::contact

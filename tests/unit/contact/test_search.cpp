@@ -61,29 +61,80 @@ void bumpy(int n, std::vector<std::array<int, 3>>& facets, std::vector<double>& 
     }
 }
 
+/// The exact box test and CPP of facet f, as a plain loop over the facets does it.
+bool brute_cpp(const double y[3], const std::vector<std::array<int, 3>>& facets,
+               const std::vector<double>& x, double margin, int f, emc::contact::Hit& h) {
+  double xm[3][3], lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < 3; ++i) {
+      xm[a][i] = x[3 * facets[f][a] + i];
+      lo[i] = std::min(lo[i], xm[a][i]);
+      hi[i] = std::max(hi[i], xm[a][i]);
+    }
+  bool in_box = true;
+  for (int i = 0; i < 3; ++i) in_box = in_box && y[i] >= lo[i] - margin && y[i] <= hi[i] + margin;
+  h = emc::contact::Hit{};
+  h.facet = f;
+  return k::facet_cpp(y, xm, h.xi, h.gap) && (in_box || margin < 0);
+}
+
+/// ALGORITHM.md §2 and §5 step 2 over all facets (no grid): what FacetGrid::locate answers,
+/// with the same tie tolerance.
 emc::contact::Hit brute_force(const double y[3], const std::vector<std::array<int, 3>>& facets,
-                              const std::vector<double>& x, double margin) {
-  emc::contact::Hit best;
+                              const std::vector<double>& x, double margin, double tie,
+                              int current = -1, double hyst = 0) {
+  const double tol = 1e-9;
+  emc::contact::Hit h, best, least;
+  if (current >= 0 && brute_cpp(y, facets, x, -1, current, h) &&
+      k::facet_outside(h.xi) <= std::max(hyst, tol)) {
+    h.inside = true;
+    return h;
+  }
+  double least_out = 1e300;
   for (int f = 0; f < static_cast<int>(facets.size()); ++f) {
-    double xm[3][3], lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < 3; ++i) {
-        xm[a][i] = x[3 * facets[f][a] + i];
-        lo[i] = std::min(lo[i], xm[a][i] - margin);
-        hi[i] = std::max(hi[i], xm[a][i] + margin);
-      }
-    bool in_box = true;
-    for (int i = 0; i < 3; ++i) in_box = in_box && y[i] >= lo[i] && y[i] <= hi[i];
-    double xi[2], gap;
-    if (!in_box || !k::facet_cpp(y, xm, xi, gap) || k::facet_outside(xi) > 1e-9) continue;
-    if (best.facet < 0 || std::fabs(gap) < std::fabs(best.gap) - 1e-14 * 0.01) {
-      best.facet = f;
-      best.gap = gap;
-      best.xi[0] = xi[0];
-      best.xi[1] = xi[1];
+    if (!brute_cpp(y, facets, x, margin, f, h)) continue;
+    const double out = k::facet_outside(h.xi);
+    if (out <= tol && (best.facet < 0 || std::fabs(h.gap) < std::fabs(best.gap) - tie)) {
+      best = h;
+      best.inside = true;
+    }
+    if (out < least_out) {
+      least_out = out;
+      least = h;
     }
   }
-  return best;
+  if (best.facet >= 0 || current < 0) return best;
+  if (least.facet < 0) {
+    brute_cpp(y, facets, x, -1, current, least);
+    least_out = k::facet_outside(least.xi);
+  }
+  least.inside = least_out <= hyst;
+  return least;
+}
+
+/// The same bits: facet, xi, gap and inside.
+void expect_same(const emc::contact::Hit& a, const emc::contact::Hit& b, int t) {
+  ASSERT_EQ(a.facet, b.facet) << "query " << t;
+  EXPECT_EQ(a.inside, b.inside) << "query " << t;
+  EXPECT_EQ(a.xi[0], b.xi[0]) << "query " << t;
+  EXPECT_EQ(a.xi[1], b.xi[1]) << "query " << t;
+  EXPECT_EQ(a.gap, b.gap) << "query " << t;
+}
+
+/// Query points near the bumpy surface, a quarter exactly on grid edges or vertices (ties).
+std::vector<double> near_points(int count, unsigned seed, double lo, double hi, double dz) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(lo, hi), ddz(-dz, dz);
+  std::vector<double> y;
+  for (int t = 0; t < count; ++t) {
+    double p[2] = {d(rng), d(rng)};
+    if (t % 4 == 0) {
+      p[0] = std::round(p[0] * 40) / 40;
+      if (t % 8 == 0) p[1] = std::round(p[1] * 40) / 40;
+    }
+    y.insert(y.end(), {p[0], p[1], 0.1 * std::sin(3 * p[0]) * std::cos(2 * p[1]) + ddz(rng)});
+  }
+  return y;
 }
 
 }  // namespace
@@ -96,7 +147,7 @@ TEST(FacetGrid, MatchesBruteForce) {
   bumpy(40, facets, x);
   const double margin = 0.05;
   emc::contact::FacetGrid grid(facets, x, margin);
-  EXPECT_GT(grid.num_cells(), 100u);
+  EXPECT_GT(grid.num_cells(), 20u);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> d(0, 1), dz(-0.04, 0.04);
   int found = 0;
@@ -108,12 +159,9 @@ TEST(FacetGrid, MatchesBruteForce) {
     }
     y[2] = 0.1 * std::sin(3 * y[0]) * std::cos(2 * y[1]) + dz(rng);
     const auto a = grid.locate(y);
-    const auto b = brute_force(y, facets, x, margin);
-    ASSERT_EQ(a.facet, b.facet) << "query " << t;
-    if (a.facet >= 0) {
-      ++found;
-      EXPECT_DOUBLE_EQ(a.gap, b.gap);
-    }
+    const auto b = brute_force(y, facets, x, margin, grid.tie());
+    expect_same(a, b, t);
+    found += a.facet >= 0;
   }
   EXPECT_GT(found, 3800);  // a few queries near the outer border project outside every facet
 }
@@ -145,7 +193,7 @@ TEST(FacetGrid, BatchInCellOrderMatchesSingleQueries) {
     found += one.facet >= 0;
     outside += y[3 * k] < -0.1 || y[3 * k] > 1.1;
   }
-  EXPECT_GT(found, 1000);  // about a quarter lie within the margin over the surface
+  EXPECT_GT(found, 1000);   // about a quarter lie within the margin over the surface
   EXPECT_GT(outside, 100);  // some points lie outside the grid
 }
 
@@ -171,4 +219,235 @@ TEST(FacetGrid, KeepsCurrentFacetWithinHysteresis) {
   EXPECT_GE(other, 0);
   // without hysteresis the neighbour is left for the facet that contains the point
   if (other >= 0) EXPECT_EQ(grid.locate(y, other, 0.0).facet, h0.facet);
+}
+
+namespace {
+
+/// A copy of host data in a View on the execution space (n rows of 3).
+template <class T>
+Kokkos::View<T* [3], emc::ExecSpace> to_view(const T* data, std::size_t n) {
+  Kokkos::View<T* [3], emc::ExecSpace> v("test::rows", n);
+  Kokkos::deep_copy(
+      v, Kokkos::View<const T* [3], Kokkos::HostSpace, Kokkos::MemoryUnmanaged>(data, n));
+  return v;
+}
+
+/// The facets renumbered on the nodes they use (local contact-node indices) and those nodes.
+void local_nodes(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
+                 std::vector<std::array<int, 3>>& lf, std::vector<double>& lx) {
+  std::vector<int> local(x.size() / 3, -1);
+  lf = facets;
+  for (auto& f : lf)
+    for (int& n : f) {
+      if (local[n] < 0) {
+        local[n] = static_cast<int>(lx.size() / 3);
+        lx.insert(lx.end(), {x[3 * n], x[3 * n + 1], x[3 * n + 2]});
+      }
+      n = local[n];
+    }
+}
+
+/// In a parallel_for over the points k: locate(y_k), locate(y_k, current, 1e-3) and a
+/// summary of for_each_candidate (count, a sum over the candidates in their order, and the
+/// last facet id, or 1e9 if the ids did not increase).
+void grid_queries(const emc::contact::FacetGrid& grid, Kokkos::View<double* [3], emc::ExecSpace> y,
+                  Kokkos::View<emc::contact::Hit* [2], emc::ExecSpace> hits,
+                  Kokkos::View<double* [3], emc::ExecSpace> cand) {
+  const emc::contact::FacetGrid g = grid;
+  Kokkos::parallel_for(
+      "test::grid_queries", Kokkos::RangePolicy<emc::ExecSpace>(0, y.extent(0)),
+      KOKKOS_LAMBDA(const int k) {
+        const double p[3] = {y(k, 0), y(k, 1), y(k, 2)};
+        hits(k, 0) = g.locate(p);
+        hits(k, 1) = g.locate(p, k % 7 == 0 ? -1 : (37 * k) % g.num_facets(), 1e-3);
+        double count = 0, sum = 0, last = -1;
+        g.for_each_candidate(p, [&](const emc::contact::Hit& h, double out) {
+          count += 1;
+          sum += h.gap * (h.facet + 1) + out + g.metric(h.facet).f.n[2];
+          last = h.facet > last ? h.facet : 1e9;
+        });
+        cand(k, 0) = count;
+        cand(k, 1) = sum;
+        cand(k, 2) = last;
+      });
+}
+
+}  // namespace
+
+// Bit for bit the brute-force rule with a current facet and hysteresis (§5 step 2): kept,
+// left for a valid neighbour, or the least-outside candidate; also with a far current facet.
+TEST(FacetGrid, MatchesBruteForceWithCurrentFacet) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(40, facets, x);
+  for (const double margin : {0.05, 0.01}) {  // about 50 and 700 cells
+    emc::contact::FacetGrid grid(facets, x, margin);
+    const auto y = near_points(3000, 7, -0.05, 1.05, 0.06);
+    std::mt19937 rng(8);
+    std::uniform_int_distribution<int> pick(0, static_cast<int>(facets.size()) - 1);
+    const double hysts[4] = {0.0, 1e-3, 0.05, 0.5};
+    for (int t = 0; t < 3000; ++t) {
+      const int current = t % 3 == 0 ? -1 : (t % 3 == 1 ? grid.locate(&y[3 * t]).facet : pick(rng));
+      const double hyst = hysts[t % 4];
+      expect_same(grid.locate(&y[3 * t], current, hyst),
+                  brute_force(&y[3 * t], facets, x, margin, grid.tie(), current, hyst), t);
+    }
+  }
+}
+
+// The queries inside a Kokkos parallel_for give the bits of a plain host loop (issue 15: a
+// test per contact kernel): locate with and without a current facet, and for_each_candidate.
+TEST(FacetGrid, QueriesInKernelMatchHostLoop) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(40, facets, x);
+  const emc::contact::FacetGrid grid(facets, x, 0.05);
+  const auto yh = near_points(5000, 9, -0.1, 1.1, 0.08);
+  const int n = static_cast<int>(yh.size() / 3);
+  const auto y = to_view(yh.data(), n);
+  Kokkos::View<emc::contact::Hit* [2], emc::ExecSpace> hits("test::hits", n);
+  Kokkos::View<double* [3], emc::ExecSpace> cand("test::candidates", n);
+  grid_queries(grid, y, hits, cand);
+  const auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hits);
+  const auto ch = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), cand);
+  int with_candidates = 0;
+  for (int k = 0; k < n; ++k) {
+    const double* p = &yh[3 * k];
+    expect_same(hh(k, 0), grid.locate(p), k);
+    expect_same(hh(k, 1), grid.locate(p, k % 7 == 0 ? -1 : (37 * k) % grid.num_facets(), 1e-3), k);
+    double count = 0, sum = 0;
+    grid.for_each_candidate(p, [&](const emc::contact::Hit& h, double out) {
+      count += 1;
+      sum += h.gap * (h.facet + 1) + out + grid.metric(h.facet).f.n[2];
+    });
+    EXPECT_EQ(ch(k, 0), count);
+    EXPECT_EQ(ch(k, 1), sum);
+    EXPECT_LT(ch(k, 2), 1e9);
+    with_candidates += count > 0;
+  }
+  EXPECT_GT(with_candidates, 1000);
+}
+
+// The parallel batch query on Views gives every point its own locate()'s bits.
+TEST(FacetGrid, BatchOnViewsMatchesSingleQueries) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(40, facets, x);
+  const emc::contact::FacetGrid grid(facets, x, 0.05);
+  const auto yh = near_points(5000, 11, -0.2, 1.2, 0.1);
+  const int n = static_cast<int>(yh.size() / 3);
+  Kokkos::View<emc::contact::Hit*, emc::ExecSpace> hits("test::hits", n);
+  grid.locate_all(to_view(yh.data(), n), hits);
+  const auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hits);
+  for (int k = 0; k < n; ++k) expect_same(hh(k), grid.locate(&yh[3 * k]), k);
+}
+
+// The parallel build is deterministic: from Views on local node indices or from host
+// containers, the same cells in the same order; every list sorted by facet id; every facet in
+// exactly the cells its box overlaps, with its box quantized in the cell.
+TEST(FacetGrid, BuildIsDeterministicAndListsSorted) {
+  std::vector<std::array<int, 3>> facets, lf;
+  std::vector<double> x, lx;
+  bumpy(40, facets, x);
+  local_nodes(facets, x, lf, lx);
+  const emc::contact::FacetGrid a(facets, x, 0.05);
+  const emc::contact::FacetGrid b(to_view(lf.front().data(), lf.size()),
+                                  to_view(lx.data(), lx.size() / 3), 0.05);
+  const auto sa = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a.cell_start());
+  const auto sb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.cell_start());
+  const auto ea = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a.cell_entries());
+  const auto eb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.cell_entries());
+  ASSERT_EQ(a.num_cells(), b.num_cells());
+  ASSERT_EQ(sa.extent(0), a.num_cells() + 1);
+  ASSERT_EQ(ea.extent(0), eb.extent(0));
+  EXPECT_EQ(a.tie(), b.tie());
+  const auto& g = a.shape();
+  std::vector<int> cells_of(facets.size(), 0);
+  for (std::size_t c = 0; c < a.num_cells(); ++c) {
+    ASSERT_EQ(sa(c), sb(c));
+    const int d[3] = {int(c % g.dims[0]), int(c / g.dims[0] % g.dims[1]),
+                      int(c / g.dims[0] / g.dims[1])};
+    for (int e = sa(c); e < sa(c + 1); ++e) {
+      ASSERT_EQ(ea(e).facet, eb(e).facet);
+      if (e > sa(c)) EXPECT_LT(ea(e - 1).facet, ea(e).facet) << "cell " << c;
+      ++cells_of[ea(e).facet];
+      double xm[3][3];
+      for (int p = 0; p < 3; ++p)
+        for (int i = 0; i < 3; ++i) xm[p][i] = x[3 * facets[ea(e).facet][p] + i];
+      for (int i = 0; i < 3; ++i) {
+        const double lo = std::min({xm[0][i], xm[1][i], xm[2][i]}) - 0.05;
+        const double hi = std::max({xm[0][i], xm[1][i], xm[2][i]}) + 0.05;
+        EXPECT_EQ(ea(e).lo[i], g.quantum(lo, i, d[i]));
+        EXPECT_EQ(ea(e).hi[i], g.quantum(hi, i, d[i]));
+        EXPECT_EQ(ea(e).lo[i], eb(e).lo[i]);
+        EXPECT_EQ(ea(e).hi[i], eb(e).hi[i]);
+      }
+    }
+  }
+  for (std::size_t f = 0; f < facets.size(); ++f) {  // the cells its grown box overlaps
+    int n = 1;
+    for (int i = 0; i < 3; ++i) {
+      double lo = 1e300, hi = -1e300;
+      for (int p = 0; p < 3; ++p) {
+        lo = std::min(lo, x[3 * facets[f][p] + i] - 0.05);
+        hi = std::max(hi, x[3 * facets[f][p] + i] + 0.05);
+      }
+      n *= g.clamp_index(hi, i) - g.clamp_index(lo, i) + 1;
+    }
+    EXPECT_EQ(cells_of[f], n) << "facet " << f;
+  }
+  const auto y = near_points(2000, 13, -0.1, 1.1, 0.08);
+  for (int t = 0; t < 2000; ++t) expect_same(a.locate(&y[3 * t]), b.locate(&y[3 * t]), t);
+}
+
+// Slivers (angles far below the float test's limit) and degenerate facets (collinear or
+// repeated nodes) among regular ones: still the brute-force bits (the exact CPP decides).
+TEST(FacetGrid, DistortedFacetsMatchBruteForce) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(8, facets, x);
+  auto node = [&x](double a, double b, double c) {
+    x.insert(x.end(), {a, b, c});
+    return static_cast<int>(x.size() / 3 - 1);
+  };
+  for (int k = 0; k < 8; ++k) {
+    const double o = 0.1 * k;
+    facets.push_back(
+        {node(o, 0.5, 0.02), node(o + 0.3, 0.5, 0.02), node(o + 0.15, 0.5 + 1e-7, 0.02)});
+    facets.push_back({node(o, 0.3, 0.0), node(o + 0.1, 0.3, 0.0), node(o + 0.2, 0.3, 0.0)});
+    const int r = node(o, 0.7, 0.01);
+    facets.push_back({r, r, node(o + 0.1, 0.75, 0.01)});
+  }
+  const double margin = 0.05;
+  const emc::contact::FacetGrid grid(facets, x, margin);
+  const auto y = near_points(4000, 17, 0.0, 1.0, 0.05);
+  int found = 0;
+  for (int t = 0; t < 4000; ++t) {
+    const double* p = &y[3 * t];
+    const int current = t % 2 ? -1 : static_cast<int>(facets.size()) - 1 - t % 24;
+    const auto a = grid.locate(p, current, 1e-3);
+    expect_same(a, brute_force(p, facets, x, margin, grid.tie(), current, 1e-3), t);
+    expect_same(grid.locate(p), brute_force(p, facets, x, margin, grid.tie()), t);
+    found += a.facet >= 128;
+  }
+  EXPECT_GT(found, 10);  // some land on the slivers
+}
+
+// No facets, no points: nothing found, nothing to do.
+TEST(FacetGrid, EmptyGridAndEmptyBatch) {
+  const emc::contact::FacetGrid empty(std::vector<std::array<int, 3>>{}, std::vector<double>{},
+                                      0.1);
+  const double y[3] = {0, 0, 0};
+  EXPECT_EQ(empty.locate(y).facet, -1);
+  EXPECT_EQ(empty.locate(y, -1, 0.5).facet, -1);
+  std::vector<emc::contact::Hit> hits;
+  empty.locate_all(y, 1, hits);
+  ASSERT_EQ(hits.size(), 1u);
+  EXPECT_EQ(hits[0].facet, -1);
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  bumpy(4, facets, x);
+  const emc::contact::FacetGrid grid(facets, x, 0.05);
+  grid.locate_all(nullptr, 0, hits);
+  EXPECT_TRUE(hits.empty());
 }
