@@ -13,24 +13,6 @@ namespace emc::contact {
 
 namespace {
 
-/// The grid of a pair's local facets at x (the host grid holds references to its inputs).
-struct PairGrid {
-  std::vector<std::array<int, 3>> facets;
-  std::vector<double> x;
-  std::unique_ptr<FacetGrid> grid;
-  PairGrid(const LocalFacets& lf, Positions xd, double margin) {
-    auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.nodes);
-    auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xd);
-    facets.resize(fh.extent(0));
-    for (std::size_t f = 0; f < facets.size(); ++f)
-      for (int a = 0; a < 3; ++a) facets[f][a] = fh(f, a);
-    x.resize(3 * xh.extent(0));
-    for (std::size_t n = 0; n < xh.extent(0); ++n)
-      for (int i = 0; i < 3; ++i) x[3 * n + i] = xh(n, i);
-    grid = std::make_unique<FacetGrid>(facets, x, margin);
-  }
-};
-
 /// docs/THEORY.md §6.3 for each of my slave nodes of pair p not busy: the facet it enters and
 /// xi, clamped if `clamp`, from the configuration x0 + w (x1 - x0); hit(k).slave = -1 if none
 /// (else its contact-node index, and the facet's local index).
@@ -39,7 +21,7 @@ void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
                     Kokkos::View<int*, ExecSpace> busy, const EntryRule rule, const double w,
                     const bool clamp, const double edge, const int p,
                     Kokkos::View<Active*, ExecSpace> hit) {
-  const FacetGrid* grid = &grid1;  // host grid: by pointer (device-ready grid: by value)
+  const FacetGrid grid = grid1;  // by value: Views only
   Kokkos::parallel_for(
       "emcontact::contact::detect", Kokkos::RangePolicy<ExecSpace>(0, ls.size()),
       KOKKOS_LAMBDA(const int k) {
@@ -47,7 +29,7 @@ void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
         if (busy(s)) return;
         double n_s[3];
         slave_normal(ls, k, x1, n_s);
-        const Hit h1 = entered_facet(*grid, facets, x0, x1, s, n_s, rule);
+        const Hit h1 = entered_facet(grid, facets, x0, x1, s, n_s, rule);
         if (h1.facet < 0) return;
         double xf[3][3], y[3];
         for (int i = 0; i < 3; ++i) {
@@ -108,9 +90,9 @@ std::vector<Active> Contact::detect_pair(int p, Positions x0, Positions x1,
   const LocalFacets& lf = nodes_.facets(p);
   const int ns = ls.size();
   if (ns == 0 || lf.size() == 0) return {};
-  const PairGrid pg(lf, x1, pr.dmax);
+  const FacetGrid grid(lf.nodes, x1, pr.dmax);
   Kokkos::View<Active*, ExecSpace> hit("emc::detect_hits", ns);
-  entering_nodes(*pg.grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr),
+  entering_nodes(grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr),
                  laws_[p]->activation_weight(), laws_[p]->clamps(pr), pr.edge, p, hit);
   auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hit);
   auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);

@@ -111,24 +111,19 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
 
 /// §5 step 2 beyond the hysteresis: the neighbouring facet with a valid CPP at n+1/2, if any.
 Hit next_facet_of(const Contact& contact, const Active& a, const Positions::HostMirror& xh) {
+  const auto xh_device = Kokkos::create_mirror_view_and_copy(ExecSpace(), xh);
   const Pair& pr = contact.pairs()[a.pair];
   const auto& nodes = contact.nodes();
   const LocalFacets& lf = nodes.facets(a.pair);
-  std::vector<std::array<int, 3>> facets(lf.size());
-  auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.nodes);
-  for (int f = 0; f < lf.size(); ++f)
-    for (int i = 0; i < 3; ++i) facets[f][i] = fh(f, i);
-  std::vector<double> x(3 * xh.extent(0));
-  for (std::size_t l = 0; l < xh.extent(0); ++l)
-    for (int i = 0; i < 3; ++i) x[3 * l + i] = xh(l, i);
-  const FacetGrid grid(facets, x, pr.dmax);
+  const FacetGrid grid(lf.nodes, xh_device, pr.dmax);
   const int sl = nodes.local(a.slave);
   const auto& my = nodes.my_slaves(a.pair);
   const int k = static_cast<int>(std::lower_bound(my.begin(), my.end(), a.slave) - my.begin());
   LocalSlaves ls = nodes.slaves(a.pair);
   double n_s[3];
   slave_normal(ls, k, xh, n_s);
-  Hit h = next_facet(grid, &x[3 * sl], n_s, entry_rule(pr));
+  const double y[3] = {xh(sl, 0), xh(sl, 1), xh(sl, 2)};
+  Hit h = next_facet(grid, y, n_s, entry_rule(pr));
   if (h.facet >= 0)
     h.facet = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id)(h.facet);
   return h;

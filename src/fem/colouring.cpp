@@ -5,14 +5,18 @@
 #include <vector>
 
 #include "emcontact/error.hpp"
+#include "emcontact/types.hpp"
 
 namespace emc::fem {
 
 Scatter parse_scatter(const std::string& value) {
+  // auto: atomic adds where they run in loop order anyway (one thread: as reproducible, and
+  // measured faster), the coloured loops where threads would reorder them
+  if (value == "auto") return ExecSpace().concurrency() > 1 ? Scatter::coloured : Scatter::atomic;
   if (value == "coloured") return Scatter::coloured;
   if (value == "atomic") return Scatter::atomic;
   throw InputError("Solver/Assembly/scatter = \"" + value +
-                   "\": allowed values are coloured and atomic");
+                   "\": allowed values are auto, coloured and atomic");
 }
 
 namespace {

@@ -144,7 +144,7 @@ TEST_F(InputTest, DefaultsAreFilled) {
   EXPECT_EQ(linear.get<int>("max iterations"), 1000);
   EXPECT_EQ(linear.get<bool>("reuse preconditioner"), true);
   EXPECT_EQ(linear.get<double>("residual check factor"), 100.0);
-  EXPECT_EQ(p.sublist("Solver").sublist("Assembly").get<std::string>("scatter"), "coloured");
+  EXPECT_EQ(p.sublist("Solver").sublist("Assembly").get<std::string>("scatter"), "auto");
   EXPECT_TRUE(linear.isSublist("Belos") && linear.isSublist("Ifpack2") &&
               linear.isSublist("MueLu"));
   const auto& output = p.sublist("Output");
@@ -185,7 +185,7 @@ TEST_F(InputTest, UnknownIntegratorRefused) {
 TEST_F(InputTest, UnknownScatterRefused) {
   expect_message(
       error(Xml{}, {"Solver/Assembly/scatter=colored"}),
-      {"\"Solver/Assembly/scatter", "\"colored\"", "allowed: one of \"coloured\", \"atomic\""});
+      {"\"Solver/Assembly/scatter", "\"colored\"", "allowed: one of \"auto\", \"coloured\", \"atomic\""});
 }
 
 TEST_F(InputTest, MisspeltNameRefused) {
