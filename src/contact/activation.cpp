@@ -92,8 +92,8 @@ std::vector<Active> Contact::detect_pair(int p, Positions x0, Positions x1,
   if (ns == 0 || lf.size() == 0) return {};
   const FacetGrid grid(lf.nodes, x1, pr.dmax);
   Kokkos::View<Active*, ExecSpace> hit("emc::detect_hits", ns);
-  entering_nodes(grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr),
-                 laws_[p]->activation_weight(), laws_[p]->clamps(pr), pr.edge, p, hit);
+  entering_nodes(grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr), laws_[p]->activation_weight(),
+                 laws_[p]->clamps(pr), pr.edge, p, hit);
   auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hit);
   auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);
   std::vector<Active> found;

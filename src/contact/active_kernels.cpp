@@ -11,6 +11,17 @@ int count(const Refs& refs) {
   return static_cast<int>(refs.extent(0));
 }
 
+/// An entry's slave and facet at t_n (y0, xm0) and at t_{n+1} (y1, xm1).
+struct Geometry {
+  double xm0[3][3], xm1[3][3], y0[3], y1[3];
+  KOKKOS_INLINE_FUNCTION Geometry(const Positions& x0, const Positions& x1, const ActiveRef& a) {
+    facet_at(x0, a, xm0);
+    facet_at(x1, a, xm1);
+    slave_at(x0, a, y0);
+    slave_at(x1, a, y1);
+  }
+};
+
 }  // namespace
 
 // §4: the normal force on the facet at n+1/2.
@@ -85,13 +96,10 @@ void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1
       "emcontact::contact::frictionless_project", Policy(0, count(refs)),
       KOKKOS_LAMBDA(const int k) {
         const ActiveRef a = refs(k);
-        double xm0[3][3], xm1[3][3], y0[3], y1[3], z[2] = {xi(k, 0), xi(k, 1)};
-        facet_at(x0, a, xm0);
-        facet_at(x1, a, xm1);
-        slave_at(x0, a, y0);
-        slave_at(x1, a, y1);
-        outside(k) = kernels::frictionless_project(y0, y1, xm0, xm1, z, a.closes != 0);
-        for (int c = 0; c < 3; ++c) xs1(k, c) = y1[c];
+        Geometry e(x0, x1, a);
+        double z[2] = {xi(k, 0), xi(k, 1)};
+        outside(k) = kernels::frictionless_project(e.y0, e.y1, e.xm0, e.xm1, z, a.closes != 0);
+        for (int c = 0; c < 3; ++c) xs1(k, c) = e.y1[c];
         xi(k, 0) = z[0];
         xi(k, 1) = z[1];
       });
@@ -103,13 +111,10 @@ void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
       "emcontact::contact::frictionless_blocks", Policy(0, count(refs)),
       KOKKOS_LAMBDA(const int k) {
         const ActiveRef a = refs(k);
-        double xm0[3][3], xm1[3][3], y0[3], y1[3], gs[3];
-        facet_at(x0, a, xm0);
-        facet_at(x1, a, xm1);
-        slave_at(x0, a, y0);
-        slave_at(x1, a, y1);
+        const Geometry e(x0, x1, a);
+        double gs[3];
         for (int c = 0; c < 3; ++c) gs[c] = g(a.dof[c], 0);
-        kernels::frictionless_blocks(y0, y1, xm0, xm1, a.xi, gs, blocks(k), a.closes != 0);
+        kernels::frictionless_blocks(e.y0, e.y1, e.xm0, e.xm1, a.xi, gs, blocks(k), a.closes != 0);
       });
 }
 
@@ -121,11 +126,12 @@ ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Val
       "emcontact::contact::closure_terms", Policy(0, count(refs)),
       KOKKOS_LAMBDA(const int k, double& work, double& roundoff) {
         const ActiveRef a = refs(k);
-        double xm0[3][3], xm1[3][3], y0[3], y1[3], N[3];
-        facet_at(x0, a, xm0);
-        facet_at(x1, a, xm1);
-        slave_at(x0, a, y0);
-        slave_at(x1, a, y1);
+        const Geometry e(x0, x1, a);
+        const auto& xm0 = e.xm0;
+        const auto& xm1 = e.xm1;
+        const auto& y0 = e.y0;
+        const auto& y1 = e.y1;
+        double N[3];
         kernels::facet_shape(a.xi, N);
         for (int c = 0; c < 3; ++c) {
           double rel = y1[c] - y0[c];

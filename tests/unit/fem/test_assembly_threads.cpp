@@ -97,6 +97,21 @@ struct Assembled {
   void assemble() { info = disc->assemble(*u0, *V0, *u1, 1e-3, A.get(), *r, s.get()); }
 };
 
+/// Calls fn(row, col, value) for every stored entry of my rows of A, in the owned map's order.
+template <class F>
+void for_each_entry(const emc::FEMatrix& A, F&& fn) {
+  const auto map = A.getRowMap();
+  for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+    const GO row = map->getGlobalElement(l);
+    const std::size_t n = A.getNumEntriesInGlobalRow(row);
+    typename emc::FEMatrix::nonconst_global_inds_host_view_type cols("cols", n);
+    typename emc::FEMatrix::nonconst_values_host_view_type vals("vals", n);
+    std::size_t got = 0;
+    A.getGlobalRowCopy(row, cols, vals, got);
+    for (std::size_t j = 0; j < got; ++j) fn(row, cols(j), vals(j));
+  }
+}
+
 /// Every value of a vector and of the matrix (rows in the owned map's order), as bit patterns.
 std::vector<std::uint64_t> bits(const emc::Vector& r, const emc::Vector& s,
                                 const emc::FEMatrix& A) {
@@ -110,16 +125,7 @@ std::vector<std::uint64_t> bits(const emc::Vector& r, const emc::Vector& s,
     auto d = v->getLocalViewHost(Tpetra::Access::ReadOnly);
     for (std::size_t l = 0; l < d.extent(0); ++l) push(d(l, 0));
   }
-  const auto map = A.getRowMap();
-  for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
-    const GO row = map->getGlobalElement(l);
-    const std::size_t n = A.getNumEntriesInGlobalRow(row);
-    typename emc::FEMatrix::nonconst_global_inds_host_view_type cols("cols", n);
-    typename emc::FEMatrix::nonconst_values_host_view_type vals("vals", n);
-    std::size_t got = 0;
-    A.getGlobalRowCopy(row, cols, vals, got);
-    for (std::size_t j = 0; j < got; ++j) push(vals(j));
-  }
+  for_each_entry(A, [&](GO, GO, double v) { push(v); });
   return out;
 }
 
@@ -159,20 +165,12 @@ TEST_P(AssemblyThreads, MatchesSerialElementLoop) {
   // round-off of summing at most ~24 element contributions in another order: 1e-13 relative
   for (const auto& [g, v] : ref.r) EXPECT_NEAR(rv[g], v, 1e-13 * rmax) << "residual dof " << g;
   std::size_t entries = 0;
-  for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
-    const GO row = map->getGlobalElement(l);
-    const std::size_t n = A.getNumEntriesInGlobalRow(row);
-    typename emc::FEMatrix::nonconst_global_inds_host_view_type cols("cols", n);
-    typename emc::FEMatrix::nonconst_values_host_view_type vals("vals", n);
-    std::size_t got = 0;
-    A.getGlobalRowCopy(row, cols, vals, got);
-    for (std::size_t j = 0; j < got; ++j) {
-      auto it = ref.A.find({row, cols(j)});
-      const double want = it == ref.A.end() ? 0.0 : it->second;
-      EXPECT_NEAR(vals(j), want, 1e-13 * amax) << "entry (" << row << ", " << cols(j) << ")";
-      entries += it != ref.A.end();
-    }
-  }
+  for_each_entry(A, [&](GO row, GO col, double v) {
+    auto it = ref.A.find({row, col});
+    const double want = it == ref.A.end() ? 0.0 : it->second;
+    EXPECT_NEAR(v, want, 1e-13 * amax) << "entry (" << row << ", " << col << ")";
+    entries += it != ref.A.end();
+  });
   EXPECT_EQ(entries, ref.A.size()) << "every reference entry is in the matrix";
   if (const char* t = std::getenv("OMP_NUM_THREADS"))
     std::printf("compared with OMP_NUM_THREADS=%s, Kokkos execution space %s (%d threads)\n", t,
