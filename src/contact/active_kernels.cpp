@@ -24,6 +24,14 @@ struct Geometry {
 
 }  // namespace
 
+void midpoint(Positions x0, Positions x1, Positions xh) {
+  Kokkos::parallel_for(
+      "emcontact::contact::midpoint", Policy(0, static_cast<int>(xh.extent(0))),
+      KOKKOS_LAMBDA(const int l) {
+        for (int i = 0; i < 3; ++i) xh(l, i) = 0.5 * (x0(l, i) + x1(l, i));
+      });
+}
+
 // §4: the normal force on the facet at n+1/2.
 void normal_forces(Refs refs, Positions x0, Positions x1, OwnedValues g, Values fN) {
   Kokkos::parallel_for(
@@ -98,6 +106,39 @@ void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1
         const ActiveRef a = refs(k);
         Geometry e(x0, x1, a);
         double z[2] = {xi(k, 0), xi(k, 1)};
+        outside(k) = kernels::frictionless_project(e.y0, e.y1, e.xm0, e.xm1, z, a.closes != 0);
+        for (int c = 0; c < 3; ++c) xs1(k, c) = e.y1[c];
+        xi(k, 0) = z[0];
+        xi(k, 1) = z[1];
+      });
+}
+
+void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
+                         Kokkos::View<int* [3], ExecSpace> facets, Refs refs,
+                         Kokkos::View<int*, ExecSpace> leaving,
+                         Kokkos::View<int*, ExecSpace> slave_k,
+                         Kokkos::View<int*, ExecSpace> current, Positions x0, Positions x1,
+                         Positions xh, const EntryRule& rule, Values3 xs1,
+                         Kokkos::View<double* [2], ExecSpace> xi, Values outside,
+                         Kokkos::View<int*, ExecSpace> next) {
+  const FacetGrid grid = grid_h;  // by value: Views only
+  const LocalSlaves sl = ls;
+  const EntryRule r = rule;
+  Kokkos::parallel_for(
+      "emcontact::contact::frictionless_switch", Policy(0, static_cast<int>(leaving.extent(0))),
+      KOKKOS_LAMBDA(const int j) {
+        const int k = leaving(j);
+        ActiveRef a = refs(k);
+        double n_s[3];
+        slave_normal(sl, slave_k(j), xh, n_s);
+        const double y[3] = {xh(a.s, 0), xh(a.s, 1), xh(a.s, 2)};
+        const Hit h = next_facet(grid, y, n_s, r);
+        next(j) = -1;
+        if (h.facet < 0 || h.facet == current(j)) return;
+        next(j) = h.facet;
+        for (int i = 0; i < 3; ++i) a.m[i] = facets(h.facet, i);
+        Geometry e(x0, x1, a);
+        double z[2] = {h.xi[0], h.xi[1]};
         outside(k) = kernels::frictionless_project(e.y0, e.y1, e.xm0, e.xm1, z, a.closes != 0);
         for (int c = 0; c < 3; ++c) xs1(k, c) = e.y1[c];
         xi(k, 0) = z[0];

@@ -11,11 +11,9 @@ ActiveConstraints::ActiveConstraints(const Contact& contact, linalg::Elimination
 LawState ActiveConstraints::state(Positions x1) const {
   LawState s{contact_, index_, x0_, x1, {}};
   if (iterate_dependent_ && x1.extent(0) > 0) {  // n+1/2 for the chains' tangents (§5)
-    auto a = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x0_);
-    auto b = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x1);
-    s.xh = Positions::HostMirror("emc::xh", a.extent(0));
-    for (std::size_t l = 0; l < a.extent(0); ++l)
-      for (int i = 0; i < 3; ++i) s.xh(l, i) = 0.5 * (a(l, i) + b(l, i));
+    Positions xh = contact_.nodes().new_positions("emc::xh");
+    midpoint(x0_, x1, xh);
+    s.xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xh);
   }
   return s;
 }

@@ -2,6 +2,7 @@
 // factor Pt and the variation X of P^T; after every Newton update the slave is projected back
 // (update steps 2-3), moving on to a neighbouring facet beyond the hysteresis tol_f.
 #include <Teuchos_TimeMonitor.hpp>
+#include <map>
 #include <memory>
 
 #include "emcontact/contact/contact.hpp"
@@ -109,24 +110,43 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
   }
 }
 
-/// §5 step 2 beyond the hysteresis: the neighbouring facet with a valid CPP at n+1/2, if any.
-Hit next_facet_of(const Contact& contact, const Active& a, const Positions::HostMirror& xh) {
-  const auto xh_device = Kokkos::create_mirror_view_and_copy(ExecSpace(), xh);
-  const Pair& pr = contact.pairs()[a.pair];
-  const auto& nodes = contact.nodes();
-  const LocalFacets& lf = nodes.facets(a.pair);
-  const FacetGrid grid(lf.nodes, xh_device, pr.dmax);
-  const int sl = nodes.local(a.slave);
-  const auto& my = nodes.my_slaves(a.pair);
-  const int k = static_cast<int>(std::lower_bound(my.begin(), my.end(), a.slave) - my.begin());
-  LocalSlaves ls = nodes.slaves(a.pair);
-  double n_s[3];
-  slave_normal(ls, k, xh, n_s);
-  const double y[3] = {xh(sl, 0), xh(sl, 1), xh(sl, 2)};
-  Hit h = next_facet(grid, y, n_s, entry_rule(pr));
-  if (h.facet >= 0)
-    h.facet = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id)(h.facet);
-  return h;
+/// View of a host vector (setup of a kernel's inputs).
+Kokkos::View<int*, ExecSpace> to_view(const char* label, const std::vector<int>& v) {
+  Kokkos::View<int*, ExecSpace> d(std::string(label), v.size());
+  auto h = Kokkos::create_mirror_view(d);
+  for (std::size_t k = 0; k < v.size(); ++k) h(k) = v[k];
+  Kokkos::deep_copy(d, h);
+  return d;
+}
+
+/// §5 step 2 for my entries beyond the hysteresis (leaving, by pair): facet, xi, xs1 and
+/// outside move to a neighbouring facet with a valid CPP at n+1/2, if there is one.
+void switch_facets(const LawState& s, std::vector<Active>& entries, Refs refs, Positions x1,
+                   const std::map<int, std::vector<int>>& leaving, Values3 xs1,
+                   Kokkos::View<double* [2], ExecSpace> xi, Values outside) {
+  const auto& nodes = s.contact.nodes();
+  Positions xh = nodes.new_positions("emc::xh");
+  midpoint(s.x0, x1, xh);
+  for (const auto& [p, ks] : leaving) {
+    const Pair& pr = s.contact.pairs()[p];
+    const LocalFacets& lf = nodes.facets(p);
+    const auto& my = nodes.my_slaves(p);
+    std::vector<int> slave_k, current;
+    for (int k : ks) {
+      slave_k.push_back(
+          static_cast<int>(std::lower_bound(my.begin(), my.end(), entries[k].slave) - my.begin()));
+      current.push_back(lf.find(entries[k].facet));
+    }
+    Kokkos::View<int*, ExecSpace> next("emc::next_facet", ks.size());
+    frictionless_switch(FacetGrid(lf.nodes, xh, pr.dmax), nodes.slaves(p), lf.nodes, refs,
+                        to_view("emc::leaving", ks), to_view("emc::slave_k", slave_k),
+                        to_view("emc::current", current), s.x0, x1, xh, entry_rule(pr), xs1, xi,
+                        outside, next);
+    auto nh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), next);
+    auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);
+    for (std::size_t j = 0; j < ks.size(); ++j)
+      if (nh(j) >= 0) entries[ks[j]].facet = ids(nh(j));
+  }
 }
 
 // ALGORITHM.md §5 update steps 2-3 (eq. 60-64) for my frictionless slaves.
@@ -145,45 +165,24 @@ void Frictionless::after_update(const LawState& s, std::vector<Active>& active, 
   for (int k = 0; k < n; ++k)
     for (int i = 0; i < 2; ++i) xih(k, i) = entries[k].xi[i];
   Kokkos::deep_copy(xi, xih);
-  frictionless_projections(s.contact.refs(entries), s.x0, x1, xs1, xi, outside);
+  const Refs refs = s.contact.refs(entries);
+  frictionless_projections(refs, s.x0, x1, xs1, xi, outside);
+  auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outside);
+  std::map<int, std::vector<int>> leaving;  // step 2: beyond the hysteresis, by pair
+  for (int k = 0; k < n; ++k)
+    if (oh(k) > tol_f) leaving[entries[k].pair].push_back(k);
+  if (!leaving.empty()) {
+    switch_facets(s, entries, refs, x1, leaving, xs1, xi, outside);
+    Kokkos::deep_copy(oh, outside);
+  }
   auto xsh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xs1);
   Kokkos::deep_copy(xih, xi);
-  auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outside);
-  auto x0h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.x0);
-  auto x1h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x1);
-  Positions::HostMirror xh;
   auto uv = u1.getLocalViewHost(Tpetra::Access::ReadWrite);
   const auto& map = *s.contact.disc().owned_map();
-  const auto& nodes = s.contact.nodes();
   for (int k = 0; k < n; ++k) {
     Active& a = entries[k];
-    double xi_k[2] = {xih(k, 0), xih(k, 1)}, xs[3] = {xsh(k, 0), xsh(k, 1), xsh(k, 2)};
-    double out = oh(k);
-    if (out > tol_f) {  // step 2: beyond the hysteresis, move to a neighbour with a valid CPP
-      if (xh.extent(0) == 0) {
-        xh = Positions::HostMirror("emc::xh", x1h.extent(0));
-        for (std::size_t l = 0; l < xh.extent(0); ++l)
-          for (int i = 0; i < 3; ++i) xh(l, i) = 0.5 * (x0h(l, i) + x1h(l, i));
-      }
-      const Hit h = next_facet_of(s.contact, a, xh);
-      if (h.facet >= 0 && h.facet != a.facet) {
-        a.facet = h.facet;
-        const int sl = nodes.local(a.slave);
-        const auto& f = s.contact.pairs()[a.pair].facets[a.facet];
-        double xm0[3][3], xm1[3][3], y0[3];
-        for (int i = 0; i < 3; ++i) {
-          xs[i] = x1h(sl, i);
-          y0[i] = x0h(sl, i);
-          for (int j = 0; j < 3; ++j) {
-            xm0[j][i] = x0h(nodes.local(f[j]), i);
-            xm1[j][i] = x1h(nodes.local(f[j]), i);
-          }
-        }
-        xi_k[0] = h.xi[0];
-        xi_k[1] = h.xi[1];
-        out = kernels::frictionless_project(y0, xs, xm0, xm1, xi_k, s.contact.closes(a));
-      }
-    }
+    const double out = oh(k);
+    const double xi_k[2] = {xih(k, 0), xih(k, 1)}, xs[3] = {xsh(k, 0), xsh(k, 1), xsh(k, 2)};
     // kept with the extrapolated xi, up to the edge extension of activation (§6.3) so that a
     // node is not released where it would be caught again; beyond it released at the end of
     // the step

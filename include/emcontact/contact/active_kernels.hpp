@@ -4,7 +4,9 @@
 // contact nodes and writes a fixed-width block of its own; no entry writes another's.
 #include <Kokkos_Core.hpp>
 
+#include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/nodes.hpp"
+#include "emcontact/contact/search.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/frictionless.hpp"
 
@@ -37,6 +39,9 @@ KOKKOS_INLINE_FUNCTION void slave_at(const X& x, const ActiveRef& a, double y[3]
   for (int i = 0; i < 3; ++i) y[i] = x(a.s, i);
 }
 
+/// xh = (x0 + x1) / 2 of every contact node (the configuration at n+1/2, §5).
+void midpoint(Positions x0, Positions x1, Positions xh);
+
 /// §4: f_N = g_s . n_{n+1/2} per entry; g an owned vector's values (the contactless residual).
 void normal_forces(Refs refs, Positions x0, Positions x1, OwnedValues g, Values fN);
 
@@ -55,6 +60,20 @@ double master_points(Refs refs, Positions x, Values3 target);
 /// (xs1 starts at x1's slave), outside = how far xi lies outside the facet.
 void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1,
                               Kokkos::View<double* [2], ExecSpace> xi, Values outside);
+
+/// §5 step 2 for entries of one pair that left their facet beyond the hysteresis (refs(leaving(j)),
+/// my slaves' index slave_k(j) in `ls`): the facet facing the slave whose CPP at n+1/2 is inside,
+/// the nearest (next_facet on grid_h, the pair's facets at xh = n+1/2; local index current(j) is
+/// the entry's own); if another is found, xi, xs1 and outside become those of steps 2-3 on it
+/// and next(j) its local index, else next(j) = -1.
+void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
+                         Kokkos::View<int* [3], ExecSpace> facets, Refs refs,
+                         Kokkos::View<int*, ExecSpace> leaving,
+                         Kokkos::View<int*, ExecSpace> slave_k,
+                         Kokkos::View<int*, ExecSpace> current, Positions x0, Positions x1,
+                         Positions xh, const EntryRule& rule, Values3 xs1,
+                         Kokkos::View<double* [2], ExecSpace> xi, Values outside,
+                         Kokkos::View<int*, ExecSpace> next);
 
 /// §5 blocks P, Pt, X of every frictionless entry at (x0, x1), g the contactless residual.
 void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,

@@ -12,6 +12,7 @@
 
 #include "emcontact/contact/active_kernels.hpp"
 #include "emcontact/contact/detection.hpp"
+#include "emcontact/contact/nodes.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/frictionless.hpp"
 
@@ -295,4 +296,127 @@ TEST(ActiveKernels, EnteredFacetInAKernelEqualsAHostLoop) {
     entered += h.facet >= 0;
   }
   EXPECT_GT(entered, ns / 2);  // most cross the plane within the step
+}
+
+// §5 step 2 as a kernel: slaves above a plane of facets whose current facet lies elsewhere move
+// to the facet under them (next_facet at n+1/2) and are projected there, as a host loop of the
+// same calls does.
+TEST(ActiveKernels, FrictionlessSwitchEqualsAHostLoop) {
+  const int m = 10, nn = (m + 1) * (m + 1), ns = 60;
+  std::vector<std::array<int, 3>> facets;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      const int a = j * (m + 1) + i;
+      facets.push_back({a, a + 1, a + m + 2});
+      facets.push_back({a, a + m + 2, a + m + 1});
+    }
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  // nodes: the plane, then per slave the slave and two neighbours (its triangle faces -z)
+  const int total = nn + 3 * ns;
+  c::Positions x0("x0", total), x1("x1", total), xh("xh", total);
+  auto a0 = Kokkos::create_mirror_view(x0);
+  auto a1 = Kokkos::create_mirror_view(x1);
+  for (int j = 0; j <= m; ++j)
+    for (int i = 0; i <= m; ++i) {
+      const int a = j * (m + 1) + i;
+      const double p[3] = {double(i), double(j), 0.01 * (u(rng) - 0.5)};
+      for (int d = 0; d < 3; ++d) a0(a, d) = a1(a, d) = p[d];
+    }
+  for (int s = 0; s < ns; ++s) {
+    const int n = nn + 3 * s;
+    const double y[3] = {1 + (m - 2) * u(rng), 1 + (m - 2) * u(rng), 1e-3 * u(rng)};
+    const double off[3][3] = {{0, 0, 0}, {0, 0.1, 0}, {0.1, 0, 0}};  // (0,0.1)x(0.1,0): -z
+    for (int q = 0; q < 3; ++q)
+      for (int d = 0; d < 3; ++d) {
+        a0(n + q, d) = y[d] + off[q][d];
+        a1(n + q, d) = a0(n + q, d) + (d == 2 ? -2e-3 : 0.02 * (u(rng) - 0.5));
+      }
+  }
+  Kokkos::deep_copy(x0, a0);
+  Kokkos::deep_copy(x1, a1);
+  c::midpoint(x0, x1, xh);
+  Kokkos::View<int* [3], emc::ExecSpace> fv("facets", facets.size());
+  auto fh = Kokkos::create_mirror_view(fv);
+  for (std::size_t f = 0; f < facets.size(); ++f)
+    for (int a = 0; a < 3; ++a) fh(f, a) = facets[f][a];
+  Kokkos::deep_copy(fv, fh);
+  c::LocalSlaves ls;
+  ls.node = Kokkos::View<int*, emc::ExecSpace>("node", ns);
+  ls.start = Kokkos::View<int*, emc::ExecSpace>("start", ns + 1);
+  ls.tri = Kokkos::View<int* [3], emc::ExecSpace>("tri", ns);
+  auto nh = Kokkos::create_mirror_view(ls.node);
+  auto sh = Kokkos::create_mirror_view(ls.start);
+  auto th = Kokkos::create_mirror_view(ls.tri);
+  c::Refs refs("refs", ns);
+  auto rh = Kokkos::create_mirror_view(refs);
+  std::vector<int> leaving(ns), slave_k(ns), current(ns);
+  for (int s = 0; s < ns; ++s) {
+    const int n = nn + 3 * s;
+    nh(s) = n;
+    sh(s) = s;
+    th(s, 0) = n;
+    th(s, 1) = n + 1;
+    th(s, 2) = n + 2;
+    current[s] = static_cast<int>(u(rng) * facets.size()) % facets.size();  // far, mostly
+    rh(s).s = n;
+    for (int a = 0; a < 3; ++a) rh(s).m[a] = facets[current[s]][a];
+    rh(s).closes = s % 2;
+    leaving[s] = slave_k[s] = s;
+  }
+  sh(ns) = ns;
+  Kokkos::deep_copy(ls.node, nh);
+  Kokkos::deep_copy(ls.start, sh);
+  Kokkos::deep_copy(ls.tri, th);
+  Kokkos::deep_copy(refs, rh);
+  auto to_view = [](const std::vector<int>& v) {
+    Kokkos::View<int*, emc::ExecSpace> d("v", v.size());
+    auto h = Kokkos::create_mirror_view(d);
+    for (std::size_t k = 0; k < v.size(); ++k) h(k) = v[k];
+    Kokkos::deep_copy(d, h);
+    return d;
+  };
+  c::Pair pair;
+  pair.dmax = 0.5;
+  const c::EntryRule rule = c::entry_rule(pair);
+  const c::FacetGrid grid(fv, xh, pair.dmax);
+  c::Values3 xs1("xs1", ns);
+  Kokkos::View<double* [2], emc::ExecSpace> xi("xi", ns);
+  c::Values out("out", ns);
+  Kokkos::View<int*, emc::ExecSpace> next("next", ns);
+  c::frictionless_switch(grid, ls, fv, refs, to_view(leaving), to_view(slave_k), to_view(current),
+                         x0, x1, xh, rule, xs1, xi, out, next);
+  auto xsh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xs1);
+  auto xih = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xi);
+  auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
+  auto nxh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), next);
+  auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xh);
+  int switched = 0;
+  for (int s = 0; s < ns; ++s) {
+    double n_s[3];
+    c::slave_normal(ls, s, hh, n_s);
+    EXPECT_NEAR(n_s[2], -1, 1e-12);
+    const double y[3] = {hh(nn + 3 * s, 0), hh(nn + 3 * s, 1), hh(nn + 3 * s, 2)};
+    const c::Hit h = c::next_facet(grid, y, n_s, rule);
+    const int expect = h.facet < 0 || h.facet == current[s] ? -1 : h.facet;
+    ASSERT_EQ(nxh(s), expect) << "slave " << s;
+    if (expect < 0) continue;
+    ++switched;
+    double xm0[3][3], xm1[3][3], y0[3], y1[3], z[2] = {h.xi[0], h.xi[1]};
+    for (int a = 0; a < 3; ++a)
+      for (int d = 0; d < 3; ++d) {
+        xm0[a][d] = a0(facets[expect][a], d);
+        xm1[a][d] = a1(facets[expect][a], d);
+      }
+    for (int d = 0; d < 3; ++d) {
+      y0[d] = a0(nn + 3 * s, d);
+      y1[d] = a1(nn + 3 * s, d);
+    }
+    const double o = k::frictionless_project(y0, y1, xm0, xm1, z, s % 2 != 0);
+    EXPECT_EQ(oh(s), o);
+    EXPECT_EQ(xih(s, 0), z[0]);
+    EXPECT_EQ(xih(s, 1), z[1]);
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(xsh(s, d), y1[d]);
+  }
+  EXPECT_GT(switched, ns / 2);
 }
