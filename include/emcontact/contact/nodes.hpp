@@ -99,7 +99,7 @@ class ContactNodes {
   std::vector<std::vector<int>> held_;  ///< per pair: deformable facets my overlap map holds
   std::vector<int> gid_;                ///< contact node -> global node (deformable, then rigid)
   std::unordered_map<int, int> lid_;
-  int deformable_ = 0;  ///< the first deformable_ contact nodes carry dofs
+  int deformable_ = 0;                      ///< the first deformable_ contact nodes carry dofs
   std::vector<std::vector<int>> selected_;  ///< per pair: the facets of the last build
   std::vector<LocalFacets> facets_;
   std::vector<LocalSlaves> slaves_;

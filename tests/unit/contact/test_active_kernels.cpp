@@ -85,6 +85,19 @@ struct Entries {
 
 constexpr int kEntries = 200;
 
+/// The facets of an m x m grid of unit squares in z = 0 (nodes j (m + 1) + i), two triangles
+/// each, normals +z.
+std::vector<std::array<int, 3>> plane_facets(int m) {
+  std::vector<std::array<int, 3>> facets;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      const int a = j * (m + 1) + i;
+      facets.push_back({a, a + 1, a + m + 2});
+      facets.push_back({a, a + m + 2, a + m + 1});
+    }
+  return facets;
+}
+
 }  // namespace
 
 TEST(ActiveKernels, NormalForcesEqualAHostLoop) {
@@ -239,13 +252,7 @@ TEST(ActiveKernels, ClosureTermsEqualAHostLoop) {
 TEST(ActiveKernels, EnteredFacetInAKernelEqualsAHostLoop) {
   // a 20 x 20 grid of squares in z = 0 (two triangles each, normals +z); slaves crossing it
   const int m = 20, nn = (m + 1) * (m + 1), ns = 500;
-  std::vector<std::array<int, 3>> facets;
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < m; ++i) {
-      const int a = j * (m + 1) + i;
-      facets.push_back({a, a + 1, a + m + 2});
-      facets.push_back({a, a + m + 2, a + m + 1});
-    }
+  const auto facets = plane_facets(m);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<double> x0(3 * (nn + ns)), x1;
@@ -303,13 +310,7 @@ TEST(ActiveKernels, EnteredFacetInAKernelEqualsAHostLoop) {
 // same calls does.
 TEST(ActiveKernels, FrictionlessSwitchEqualsAHostLoop) {
   const int m = 10, nn = (m + 1) * (m + 1), ns = 60;
-  std::vector<std::array<int, 3>> facets;
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < m; ++i) {
-      const int a = j * (m + 1) + i;
-      facets.push_back({a, a + 1, a + m + 2});
-      facets.push_back({a, a + m + 2, a + m + 1});
-    }
+  const auto facets = plane_facets(m);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0, 1);
   // nodes: the plane, then per slave the slave and two neighbours (its triangle faces -z)

@@ -183,9 +183,9 @@ TEST_F(InputTest, UnknownIntegratorRefused) {
 }
 
 TEST_F(InputTest, UnknownScatterRefused) {
-  expect_message(
-      error(Xml{}, {"Solver/Assembly/scatter=colored"}),
-      {"\"Solver/Assembly/scatter", "\"colored\"", "allowed: one of \"auto\", \"coloured\", \"atomic\""});
+  expect_message(error(Xml{}, {"Solver/Assembly/scatter=colored"}),
+                 {"\"Solver/Assembly/scatter", "\"colored\"",
+                  "allowed: one of \"auto\", \"coloured\", \"atomic\""});
 }
 
 TEST_F(InputTest, MisspeltNameRefused) {
