@@ -1,6 +1,7 @@
 #include "emcontact/contact/active_set.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
 #include <set>
 
@@ -24,7 +25,12 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
     contact_.select(u0, u1, contact_.gather(trial));
-    const bool changed = constraints_.use(&trial);
+    bool changed;
+    {
+      static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: new P");
+      Teuchos::TimeMonitor tm(*timer);  // the rows of P of a new set (§3)
+      changed = constraints_.use(&trial);
+    }
     g = solve(changed, contact_.global_count(static_cast<int>(trial.size())) == 0);
     if (!g) return false;
     contact_.select(u0, u1, constraints_.index());  // the exact sweep of the solution

@@ -1,5 +1,7 @@
 #include "emcontact/contact/constraints.hpp"
 
+#include <Teuchos_TimeMonitor.hpp>
+
 namespace emc::contact {
 
 ActiveConstraints::ActiveConstraints(const Contact& contact, linalg::Elimination& elim,
@@ -59,7 +61,9 @@ void ActiveConstraints::start(const Vector& u0, Vector& u1) {
 
 void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vector& g,
                                       const Matrix& A) {
-  if (!iterate_dependent_) {  // P is fixed during the step, beta follows A (eq. 44)
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: Newton iterates");
+  Teuchos::TimeMonitor tm(*timer);  // beta, and the rows that follow the iterate
+  if (!iterate_dependent_) {        // P is fixed during the step, beta follows A (eq. 44)
     elim_.set_dummy_values(contact_.dummy_values(A, dummies_));
     return;
   }

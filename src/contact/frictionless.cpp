@@ -97,15 +97,11 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
   auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), blocks);
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");
   Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the scatter into P's rows)
-  Vector diag(A->getRowMap());
-  A->getLocalDiagCopy(diag);
-  auto dv = diag.getLocalViewHost(Tpetra::Access::ReadOnly);
-  const auto& map = *s.contact.disc().owned_map();
   for (int k = 0; k < n; ++k) {
     const Active& a = entries[k];
     scatter(s, a, bh(k), out);
     double beta = 0;
-    for (int c = 0; c < 3; ++c) beta += dv(map.getLocalElement(fem::dof_gid(a.slave, c)), 0) / 3;
+    for (int c = 0; c < 3; ++c) beta += diagonal_entry(*A, fem::dof_gid(a.slave, c)) / 3;
     out.beta.emplace_back(fem::dof_gid(a.slave, 2), beta);  // eq. 59
   }
 }

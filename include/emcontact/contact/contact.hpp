@@ -19,6 +19,9 @@ namespace emc::contact {
 
 class Law;
 
+/// A_ii of an owned dof i of A (0 if the row stores no diagonal entry).
+double diagonal_entry(const Matrix& A, GO i);
+
 class Contact {
  public:
   Contact(const fem::Discretization& disc, std::vector<Pair> pairs);
