@@ -21,20 +21,23 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   out.stats = StepContactStats{};
   std::vector<double> fN;
   const Vector* g = nullptr;
+  Positions x0, x1;
   for (;;) {
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
-    contact_.select(u0, u1, contact_.gather(trial));
+    ActiveIndex index = contact_.gather(trial);
+    contact_.select(u0, u1, index);
     bool changed;
     {
       static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: new P");
       Teuchos::TimeMonitor tm(*timer);  // the rows of P of a new set (§3)
-      changed = constraints_.use(&trial);
+      changed = constraints_.use(&trial, std::move(index));
     }
     g = solve(changed, contact_.global_count(static_cast<int>(trial.size())) == 0);
     if (!g) return false;
     contact_.select(u0, u1, constraints_.index());  // the exact sweep of the solution
-    const Positions x0 = contact_.positions(u0), x1 = contact_.positions(u1);
+    x0 = contact_.positions(u0);
+    x1 = contact_.positions(u1);
     const auto fresh = contact_.detect(x0, x1, trial);
     fN = contact_.normal_forces(*g, x0, x1, trial);
     std::vector<Active> next;
@@ -62,14 +65,13 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     trial = std::move(next);
     ++out.stats.resolves;
   }
-  accept(u0, u1, *g, trial, fN, out, p);
+  accept(x0, x1, *g, trial, fN, out, p);  // the contact nodes of the last detection
   return true;
 }
 
 // §6.5: accept; nodes still in tension (only pinned ones can be) leave for the next step.
-void ActiveSetLoop::accept(const Vector& u0, const Vector& u1, const Vector& g,
-                           std::vector<Active>& trial, const std::vector<double>& fN,
-                           SettledSet& out, Vector* p) {
+void ActiveSetLoop::accept(Positions x0, Positions x1, const Vector& g, std::vector<Active>& trial,
+                           const std::vector<double>& fN, SettledSet& out, Vector* p) {
   out.active.clear();
   out.normal_force.clear();
   out.nodes.clear();
@@ -84,7 +86,6 @@ void ActiveSetLoop::accept(const Vector& u0, const Vector& u1, const Vector& g,
       out.normal_force.push_back(fN[k]);
     }
   }
-  const Positions x0 = contact_.positions(u0), x1 = contact_.positions(u1);
   if (p) {  // docs/THEORY.md §7.4: the work the closure made the contact forces do
     out.closure = contact_.closure_work(g, x0, x1, trial, *p);
     contact_.mark_kept_gaps(out.active, x1);

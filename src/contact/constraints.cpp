@@ -21,7 +21,7 @@ LawState ActiveConstraints::state(Positions x1) const {
 }
 
 // ALGORITHM.md §3: rebuild P only when the active set changes (on any rank: collective).
-bool ActiveConstraints::use(std::vector<Active>* trial) {
+bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
   trial_ = trial;
   std::vector<std::array<double, 4>> key;
   std::vector<int> count(contact_.laws().size(), 0);
@@ -37,7 +37,7 @@ bool ActiveConstraints::use(std::vector<Active>* trial) {
       present_.push_back(contact_.laws()[l]);
       iterate_dependent_ |= contact_.laws()[l]->iterate_dependent();
     }
-  index_ = contact_.gather(*trial);
+  index_ = std::move(index);
   if (iterate_dependent_) applied_.clear();  // P is rebuilt at every iterate anyway
   if (contact_.global_count(key == applied_ ? 0 : 1) == 0) return false;
   LawRows out;

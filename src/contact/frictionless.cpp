@@ -8,6 +8,7 @@
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/law.hpp"
+#include "emcontact/views.hpp"
 
 namespace emc::contact {
 
@@ -104,15 +105,6 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
     for (int c = 0; c < 3; ++c) beta += diagonal_entry(*A, fem::dof_gid(a.slave, c)) / 3;
     out.beta.emplace_back(fem::dof_gid(a.slave, 2), beta);  // eq. 59
   }
-}
-
-/// View of a host vector (setup of a kernel's inputs).
-Kokkos::View<int*, ExecSpace> to_view(const char* label, const std::vector<int>& v) {
-  Kokkos::View<int*, ExecSpace> d(std::string(label), v.size());
-  auto h = Kokkos::create_mirror_view(d);
-  for (std::size_t k = 0; k < v.size(); ++k) h(k) = v[k];
-  Kokkos::deep_copy(d, h);
-  return d;
 }
 
 /// §5 step 2 for my entries beyond the hysteresis (leaving, by pair): facet, xi, xs1 and

@@ -6,6 +6,7 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/parallel.hpp"
+#include "emcontact/views.hpp"
 
 namespace emc::linalg {
 
@@ -13,15 +14,6 @@ using Teuchos::RCP;
 using Teuchos::rcp;
 
 namespace {
-
-template <class T>
-Kokkos::View<T*, ExecSpace> to_view(const char* label, const std::vector<T>& v) {
-  Kokkos::View<T*, ExecSpace> out(Kokkos::ViewAllocateWithoutInitializing(label), v.size());
-  auto h = Kokkos::create_mirror_view(out);
-  for (std::size_t k = 0; k < v.size(); ++k) h(k) = v[k];
-  Kokkos::deep_copy(out, h);
-  return out;
-}
 
 /// Rows sorted by id, flattened: ids, spans into cols/weights (index 0: the weight 1 of a plain
 /// row), and the key (row, count, columns...).

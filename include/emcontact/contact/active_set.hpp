@@ -46,7 +46,7 @@ class ActiveSetLoop {
   const Contact& contact_;
   ActiveConstraints constraints_;
 
-  void accept(const Vector& u0, const Vector& u1, const Vector& g, std::vector<Active>& trial,
+  void accept(Positions x0, Positions x1, const Vector& g, std::vector<Active>& trial,
               const std::vector<double>& fN, SettledSet& out, Vector* p);
 };
 

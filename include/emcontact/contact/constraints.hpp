@@ -16,8 +16,8 @@ class ActiveConstraints : public linalg::ConstraintHooks {
 
   /// The trial active set of the step (frictionless entries get their facet and xi updated in
   /// place). Rebuilds P when the set differs from the last one on any rank (collective);
-  /// returns true if it did.
-  bool use(std::vector<Active>* trial);
+  /// returns true if it did. index: every rank's entries of the set (Contact::gather).
+  bool use(std::vector<Active>* trial, ActiveIndex index);
   /// All ranks' entries of the trial set (chains).
   const ActiveIndex& index() const { return index_; }
 
