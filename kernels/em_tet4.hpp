@@ -15,21 +15,23 @@ enum class Integrator : int { energy_momentum = 0, midpoint = 1 };
 /// Internal force f[12] (node-major: 3A+i) and, if K != nullptr, the tangent d f / d u_{n+1}
 /// K[12][12], given u0 = u_n and u1 = u_{n+1} at the 4 nodes.
 KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame& m,
-                                    Integrator integ, const double u0[4][3],
-                                    const double u1[4][3], double f[12], double (*K)[12]) {
-  double F0[3][3], F1[3][3], Fm[3][3], Ea[3][3], S[3][3];
-  deformation_gradient(G, u0, F0);
-  deformation_gradient(G, u1, F1);
+                                    Integrator integ, const double u0[4][3], const double u1[4][3],
+                                    double f[12], double (*K)[12]) {
+  double H0[3][3], H1[3][3], Hm[3][3], F1[3][3], Fm[3][3], Ea[3][3], S[3][3];
+  displacement_gradient(G, u0, H0);
+  displacement_gradient(G, u1, H1);
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Fm[i][j] = 0.5 * (F0[i][j] + F1[i][j]);
+    for (int j = 0; j < 3; ++j) Hm[i][j] = 0.5 * (H0[i][j] + H1[i][j]);
+  identity_plus(H1, F1);
+  identity_plus(Hm, Fm);
   if (integ == Integrator::energy_momentum) {
     double E0[3][3], E1[3][3];
-    green_strain(F0, E0);
-    green_strain(F1, E1);
+    green_strain(H0, E0);
+    green_strain(H1, E1);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) Ea[i][j] = 0.5 * (E0[i][j] + E1[i][j]);
   } else {
-    green_strain(Fm, Ea);
+    green_strain(Hm, Ea);
   }
   svk_stress(m, Ea, S);
   // P = F_{n+1/2} S_alg;  f_A = V_e P G_A
@@ -77,18 +79,17 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame&
       }
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-          K[3 * A + i][3 * B + j] =
-              h * ((i == j ? GSG : 0.0) + m.lambda * a[A][i] * b[B][j] + m.mu * GG * FF[i][j] +
-                   m.mu * a[B][i] * b[A][j]);
+          K[3 * A + i][3 * B + j] = h * ((i == j ? GSG : 0.0) + m.lambda * a[A][i] * b[B][j] +
+                                         m.mu * GG * FF[i][j] + m.mu * a[B][i] * b[A][j]);
     }
 }
 
 /// Strain energy V_e W(E(u)) of the element.
 KOKKOS_INLINE_FUNCTION double tet4_energy(const double G[4][3], double Ve, const Lame& m,
                                           const double u[4][3]) {
-  double F[3][3], E[3][3];
-  deformation_gradient(G, u, F);
-  green_strain(F, E);
+  double H[3][3], E[3][3];
+  displacement_gradient(G, u, H);
+  green_strain(H, E);
   return Ve * svk_energy(m, E);
 }
 

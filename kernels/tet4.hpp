@@ -47,15 +47,29 @@ KOKKOS_INLINE_FUNCTION double tet_gradients(const double X[4][3], double G[4][3]
   return d / 6.0;
 }
 
+/// H = sum_A u_A (x) G_A, the displacement gradient (F = I + H, ALGORITHM.md §1).
+KOKKOS_INLINE_FUNCTION void displacement_gradient(const double G[4][3], const double u[4][3],
+                                                  double H[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0;
+      for (int A = 0; A < 4; ++A) s += u[A][i] * G[A][j];
+      H[i][j] = s;
+    }
+}
+
+/// F = I + H.
+KOKKOS_INLINE_FUNCTION void identity_plus(const double H[3][3], double F[3][3]) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) F[i][j] = H[i][j] + (i == j ? 1.0 : 0.0);
+}
+
 /// F = I + sum_A u_A (x) G_A  (ALGORITHM.md §1).
 KOKKOS_INLINE_FUNCTION void deformation_gradient(const double G[4][3], const double u[4][3],
                                                  double F[3][3]) {
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double s = (i == j) ? 1.0 : 0.0;
-      for (int A = 0; A < 4; ++A) s += u[A][i] * G[A][j];
-      F[i][j] = s;
-    }
+  double H[3][3];
+  displacement_gradient(G, u, H);
+  identity_plus(H, F);
 }
 
 }  // namespace emc::kernels

@@ -22,6 +22,10 @@ from report_util import ENV, ROOT, replace_section  # noqa: E402
 
 PRECONDITIONER = 'ilu'  # --preconditioner: the tables below were measured with ILU(0)
 TIMERS = ('assembly', 'contact', 'elimination', 'linear solve', 'preconditioner', 'output')
+# the parts of 'contact' (THEORY §8): search and activation, a new P, the iterates' rows and
+# projections, the host pass of chains and rows, the selection of the rank's contact nodes
+CONTACT_TIMERS = ('contact: activation', 'contact: new P', 'contact: Newton iterates', 'contact: chains and rows',
+                  'contact: node selection')
 PHASES = {
     'flight': [],
     'impact': ['--set', 'Bodies/ball/Mesh/center={0, 0, 0.405}',
@@ -48,8 +52,8 @@ def run(build, size, ranks, steps, phase, threads=None):
                   r't = \S+ in ([\d.]+) s \(([\d.]+) s/step, ([\d.]+) Newton', p.stdout)
     r = dict(phase=phase, size=size, tets=int(m[1]), nodes=int(m[2]), ranks=int(m[3]), threads=threads or 1,
              setup_s=float(m[4]), steps=int(m[5]), s_per_step=float(m[7]), newton_per_step=float(m[8]))
-    for t in TIMERS:  # maximum over ranks (the third number on 2+ ranks, the only one on 1)
-        tm = re.search(r'emcontact: %s\s+(.*)' % t, p.stdout)
+    for t in TIMERS + CONTACT_TIMERS:  # maximum over ranks (the third number on 2+ ranks, the only one on 1)
+        tm = re.search(r'emcontact: %s\s+(.*)' % re.escape(t), p.stdout)
         if tm:
             nums = re.findall(r'([\d.e+-]+) \(', tm[1])
             r[t] = float(nums[2] if len(nums) >= 3 else nums[0]) / r['steps']

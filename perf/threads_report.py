@@ -10,7 +10,7 @@ in perf/README.md between <!-- threads:begin --> and <!-- threads:end -->.
 import argparse, datetime, json, os, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
-from scaling_report import TIMERS, run  # noqa: E402
+from scaling_report import CONTACT_TIMERS, TIMERS, run  # noqa: E402
 
 
 def assembly_rate(build, threads):
@@ -53,6 +53,16 @@ def main():
         md.append('| %s | %d | %d | %.4f | %.2f | %.1f | %s | %.0f%% |' % (
             r['phase'], r['tets'], r['threads'], r['s_per_step'], r['newton_per_step'], r['krylov_per_solve'],
             ' / '.join('%.4f' % r.get(t, 0) for t in TIMERS), 100 * one['s_per_step'] / (r['threads'] * r['s_per_step'])))
+    md += ['', 'Contact (THEORY §8) in the impact phase, s/step, and its share of the assembly:', '',
+           '| tets | threads | contact | ' + ' | '.join(t.split(': ')[1] for t in CONTACT_TIMERS) +
+           ' | contact / assembly | contact efficiency |', '|---|---|---|' + '---|' * len(CONTACT_TIMERS) + '---|---|']
+    for r in runs:
+        if r['phase'] != 'impact':
+            continue
+        one = next(x for x in runs if x['phase'] == 'impact' and x['size'] == r['size'] and x['threads'] == n1)
+        md.append('| %d | %d | %.4f | %s | %.1f%% | %.0f%% |' % (
+            r['tets'], r['threads'], r.get('contact', 0), ' | '.join('%.4f' % r.get(t, 0) for t in CONTACT_TIMERS),
+            100 * r.get('contact', 0) / r['assembly'], 100 * one.get('contact', 0) / (r['threads'] * r.get('contact', 1e-300))))
     text = '\n'.join(md)
     print(text)
     replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'threads', text, '## Thread scaling')

@@ -68,6 +68,17 @@ void gap_range(Refs refs, Positions x1, double& lo, double& hi) {
   if (lo > hi) lo = 1e300, hi = -1e300;
 }
 
+void position_roundoff(Refs refs, Positions x1, Values r) {
+  Kokkos::parallel_for(
+      "emcontact::contact::position_roundoff", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        double y[3];
+        slave_at(x1, a, y);
+        r(k) =
+            kernels::epsilon() * (kernels::fabs(y[0]) + kernels::fabs(y[1]) + kernels::fabs(y[2]));
+      });
+}
+
 void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind) {
   Kokkos::parallel_for(
       "emcontact::contact::behind_facets", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {

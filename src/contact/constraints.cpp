@@ -63,7 +63,8 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vec
                                       const Matrix& A) {
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: Newton iterates");
   Teuchos::TimeMonitor tm(*timer);  // beta, and the rows that follow the iterate
-  if (!iterate_dependent_) {        // P is fixed during the step, beta follows A (eq. 44)
+  roundoff_ = 0;
+  if (!iterate_dependent_) {  // P is fixed during the step, beta follows A (eq. 44)
     elim_.set_dummy_values(contact_.dummy_values(A, dummies_));
     return;
   }
@@ -71,6 +72,7 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vec
   LawRows out;
   const LawState s = state(contact_.positions(u1));
   for (const Law* law : present_) law->rows(s, *trial_, &g, &A, out);
+  roundoff_ = out.roundoff;
   elim_.set_constraints(fixed_, out.rows, out.beta);
   elim_.set_linearisation(out.pt_rows, out.X);
 }

@@ -93,9 +93,13 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
   if (entries.empty() || !g || !A) return;
   const int n = static_cast<int>(entries.size());
   Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks("emc::frictionless_blocks", n);
-  contact::frictionless_blocks(s.contact.refs(entries), s.x0, s.x1,
-                               g->getLocalViewDevice(Tpetra::Access::ReadOnly), blocks);
+  const Refs refs = s.contact.refs(entries);
+  contact::frictionless_blocks(refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly),
+                               blocks);
   auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), blocks);
+  Values r("emc::position_roundoff", n);
+  position_roundoff(refs, s.x1, r);
+  auto rh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), r);
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");
   Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the scatter into P's rows)
   for (int k = 0; k < n; ++k) {
@@ -104,6 +108,7 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
     double beta = 0;
     for (int c = 0; c < 3; ++c) beta += diagonal_entry(*A, fem::dof_gid(a.slave, c)) / 3;
     out.beta.emplace_back(fem::dof_gid(a.slave, 2), beta);  // eq. 59
+    out.roundoff += beta * beta * rh(k) * rh(k);
   }
 }
 

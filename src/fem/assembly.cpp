@@ -201,11 +201,12 @@ Teuchos::RCP<Vector> Discretization::von_mises(const Vector& u) const {
   Kokkos::parallel_for(
       "emcontact::fem::von_mises_tet4", Kokkos::RangePolicy<ExecSpace>(0, ne),
       KOKKOS_LAMBDA(const int k) {
-        double Gk[4][3], uk[4][3], F[3][3], E[3][3], S[3][3];
+        double Gk[4][3], uk[4][3], H[3][3], F[3][3], E[3][3], S[3][3];
         ev.gradients(k, Gk);
         ev.gather(vu, k, uk);
-        kernels::deformation_gradient(Gk, uk, F);
-        kernels::green_strain(F, E);
+        kernels::displacement_gradient(Gk, uk, H);
+        kernels::identity_plus(H, F);
+        kernels::green_strain(H, E);
         kernels::svk_stress(ev.lame(k), E, S);
         vm(k, 0) = kernels::von_mises(F, S, kernels::det3(F));
       });

@@ -1,5 +1,6 @@
 #include "emcontact/time/newton.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -121,8 +122,12 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       return res;
     }
     if (it == 0) r0 = r;
-    // ALGORITHM.md §1: the tolerance never sits below the round-off of g's terms
-    const double floor = std::max(opt_.atol, 100 * eps * scale.norm2());
+    // ALGORITHM.md §1: the tolerance never sits below the round-off of g's terms, nor below
+    // what re-projecting the constrained slaves leaves at every iterate
+    double roundoff = hooks_ ? hooks_->residual_roundoff() : 0.0, total = 0;
+    Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 1, &roundoff, &total);
+    const double floor =
+        std::max(opt_.atol, std::hypot(100 * eps * scale.norm2(), std::sqrt(total)));
     const double target = std::max(opt_.rtol * r0, floor);
     res.floor = floor;
     if (r <= target && (it > 0 || r <= floor)) {

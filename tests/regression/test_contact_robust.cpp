@@ -218,8 +218,9 @@ INSTANTIATE_TEST_SUITE_P(Robust, BarOnWall, ::testing::Values("frictionless", "f
 // A cube stacked on a cube of the same size, the lower one on a rigid square of its size, under
 // gravity from rest (stack.xml), against the same stack on a lower block 1.5 times wider and a
 // wider square: no node sinks (deeper than g dt^2, what one step of free fall brings), the
-// stack does not creep (the top cube's height changes by less than its elastic compression,
-// rho g H / E = 1e-3), and the active set changes no more often than on the oversized master.
+// stack does not creep (the top cube's centroid stays within twice its static drop: a suddenly
+// applied load rings between none and twice the static deflection), and the active set changes
+// no more often than on the oversized master.
 // Both start with gravity suddenly applied and ring; a node whose normal velocity the
 // constraint reflects (§6.4) is released and caught again in both.
 class Stack : public ::testing::TestWithParam<const char*> {};
@@ -238,7 +239,10 @@ TEST_P(Stack, StaysAtRestLikeTheOversizedStack) {
   print("stack on a wide block", big);
   EXPECT_LE(eq.depth, 9.81 * 0.01 * 0.01);
   EXPECT_LE(big.depth, 9.81 * 0.01 * 0.01);
-  EXPECT_LT(std::fabs(eq.top_z - eq.top_z0), 1e-3);
+  // static drop of the top cube's centroid, as uniaxial columns of height H = 1: the lower cube
+  // under the top's weight and its own (1.5 rho g H^2 / E) and the top's lower half (0.375)
+  const double rho = 100, g = 9.81, H = 1, E = 1e6, static_drop = 1.875 * rho * g * H * H / E;
+  EXPECT_LT(std::fabs(eq.top_z - eq.top_z0), 2 * static_drop);
   EXPECT_LE(eq.changes, 1.5 * big.changes + 10);
   EXPECT_LT(eq.dE, 1e-10);
 }

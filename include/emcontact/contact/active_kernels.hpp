@@ -48,6 +48,9 @@ void normal_forces(Refs refs, Positions x0, Positions x1, OwnedValues g, Values 
 /// g_N at n+1 of every entry on its facet's plane: (min, max) over the entries (+-1e300 if
 /// none or every facet is degenerate).
 void gap_range(Refs refs, Positions x1, double& lo, double& hi);
+/// r(k): the round-off of entry k's slave position at x1 (an ulp of its coordinates), which a
+/// projection of the slave onto its facet cannot go below (Newton's floor, ALGORITHM.md §1).
+void position_roundoff(Refs refs, Positions x1, Values r);
 
 /// docs/THEORY.md §7.2: 1 where the slave lies behind its facet at x deeper than the round-off.
 void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind);

@@ -24,6 +24,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   void start(const Vector& u0, Vector& u1) override;
   void before_reduce(const Vector& u0, const Vector& u1, const Vector& g, const Matrix& A) override;
   void after_update(const Vector& u0, Vector& u1) override;
+  double residual_roundoff() const override { return roundoff_; }
 
  private:
   const Contact& contact_;
@@ -36,6 +37,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   bool iterate_dependent_ = false;   ///< some present law's rows follow the iterate
   Positions x0_;                     ///< contact nodes at t_n
   ActiveIndex index_;                ///< every rank's active entries (chains)
+  double roundoff_ = 0;              ///< LawRows::roundoff at the last iterate
 
   LawState state(Positions x1) const;
 };

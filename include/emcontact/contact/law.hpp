@@ -31,6 +31,9 @@ struct LawRows {
   std::vector<linalg::Entry> X;             ///< the variation of P^T
   std::vector<std::pair<GO, double>> beta;  ///< (dummy dof, beta) from the Newton matrix
   std::vector<GO> dummies;  ///< dummies whose beta follows A while P is kept (eq. 44)
+  /// Rows that follow the iterate: sum over my slaves of (beta * position round-off)^2, the
+  /// residual that re-projecting the slaves leaves at every iterate (Newton's floor).
+  double roundoff = 0;
 };
 
 class Law {

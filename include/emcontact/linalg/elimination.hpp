@@ -25,6 +25,9 @@ class ConstraintHooks {
                              const Matrix& A) = 0;
   /// After u1 += P dq.
   virtual void after_update(const Vector& u0, Vector& u1) = 0;
+  /// This rank's share (a sum of squares) of the reduced residual that restoring the constraints
+  /// leaves at every iterate (the projection's round-off; Newton's floor, ALGORITHM.md §1).
+  virtual double residual_roundoff() const { return 0; }
 };
 
 class Elimination {

@@ -48,8 +48,7 @@ TEST(Tet4, GradientsSumToZeroAndVolume) {
   Element e = make_element();
   EXPECT_GT(e.Ve, 0);
   EXPECT_NEAR(e.Ve, k::tet_volume(e.X), 1e-15);
-  for (int j = 0; j < 3; ++j)
-    EXPECT_NEAR(e.G[0][j] + e.G[1][j] + e.G[2][j] + e.G[3][j], 0, 1e-14);
+  for (int j = 0; j < 3; ++j) EXPECT_NEAR(e.G[0][j] + e.G[1][j] + e.G[2][j] + e.G[3][j], 0, 1e-14);
   // grad of x_i itself is the identity: sum_A X_A,i G_A,j = delta_ij
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -124,6 +123,29 @@ TEST_P(Integrators, ForcesAndMomentsVanish) {
   }
 }
 
+// A body near rest: the force of a displacement gradient |H| ~ 1e-12 is the linear one,
+// 2 K(0) u (K = df/du1 is half the linear stiffness at u0 = u1 = 0), to O(|H|) = 1e-12
+// relative; tolerance 1e-10. E from F^T F - I would cancel against I and miss it by about
+// eps / |H| ~ 1e-4, a force noise on every node above Newton's round-off floor (§1).
+TEST_P(Integrators, ForceOfATinyStrainIsLinearToRoundOff) {
+  Element e = make_element();
+  std::mt19937 rng(5);
+  double zero[4][3] = {}, u[4][3], f0[12], K0[12][12], f[12];
+  k::em_tet4(e.G, e.Ve, kMat, GetParam(), zero, zero, f0, K0);
+  for (int trial = 0; trial < 10; ++trial) {
+    random_u(rng, 1e-12, u);
+    k::em_tet4(e.G, e.Ve, kMat, GetParam(), u, u, f, nullptr);
+    double err = 0, norm = 0;
+    for (int r = 0; r < 12; ++r) {
+      double lin = 0;
+      for (int c = 0; c < 12; ++c) lin += 2 * K0[r][c] * u[c / 3][c % 3];
+      err += (f[r] - lin) * (f[r] - lin);
+      norm += lin * lin;
+    }
+    EXPECT_LT(std::sqrt(err / norm), 1e-10) << "trial " << trial;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Both, Integrators,
                          ::testing::Values(k::Integrator::energy_momentum,
                                            k::Integrator::midpoint));
@@ -179,10 +201,10 @@ TEST(NewtonTet4, MassAndJacobian) {
     p.u1[c / 3][c % 3] += h;
     m.u1[c / 3][c % 3] -= h;
     double rp[12], rm[12];
-    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, p, rp,
-                   nullptr, nullptr);
-    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, m, rm,
-                   nullptr, nullptr);
+    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, p, rp, nullptr,
+                   nullptr);
+    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, m, rm, nullptr,
+                   nullptr);
     for (int q = 0; q < 12; ++q) Afd[q][c] = (rp[q] - rm[q]) / (2 * h);
   }
   double diff[12][12];
