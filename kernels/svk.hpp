@@ -1,5 +1,5 @@
 #pragma once
-// Saint-Venant-Kirchhoff material (ALGORITHM.md §1): E = (F^T F - I)/2,
+// Saint-Venant-Kirchhoff material (docs/THEORY.md §1.2): E = (F^T F - I)/2,
 // S(E) = lambda tr(E) I + 2 mu E, W = lambda/2 tr(E)^2 + mu E:E (per unit reference volume).
 #include <Kokkos_Core.hpp>
 
