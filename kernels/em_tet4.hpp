@@ -1,6 +1,6 @@
 #pragma once
 // Energy-momentum internal force of a P1 SVK tetrahedron and its exact (non-symmetric)
-// tangent (ALGORITHM.md §1, eq. 18-20, Simo-Tarnow); the plain mid-point variant.
+// tangent (docs/THEORY.md §1.4, eq. 18-20, Simo-Tarnow); the plain mid-point variant.
 //   f_A  = V_e F_{n+1/2} S_alg G_A
 //   S_alg = S((E_n + E_{n+1})/2)  (energy-momentum)  or  S(E(F_{n+1/2}))  (mid-point)
 //   K_AB = V_e [ 1/2 (G_A . S_alg G_B) I + 1/2 B_A(F_{n+1/2})^T C B_B(F_x) ],

@@ -1,7 +1,8 @@
 #pragma once
-// Contact geometry of a 3-node master facet (ALGORITHM.md §2): N = (1 - xi - eta, xi, eta),
-// x(xi) = N_i x_mi, tau_xi = x_m2 - x_m1, tau_eta = x_m3 - x_m1, n = tau_xi x tau_eta / |.|,
-// closest-point projection (CPP) by the 2x2 normal equations, gap g_N = (y - x(xi)) . n.
+// Contact geometry of a 3-node master facet (docs/THEORY.md §2.2-§2.3):
+// N = (1 - xi - eta, xi, eta), x(xi) = N_i x_mi, tau_xi = x_m2 - x_m1, tau_eta = x_m3 - x_m1,
+// n = tau_xi x tau_eta / |.|, closest-point projection (CPP) by the 2x2 normal equations,
+// gap g_N = (y - x(xi)) . n.
 #include <Kokkos_Core.hpp>
 
 #include "kernels/math.hpp"
@@ -62,7 +63,7 @@ KOKKOS_INLINE_FUNCTION FacetMetric facet_metric(const double xm[3][3]) {
   return m;
 }
 
-/// Closest-point projection of y on the facet's plane: xi and the gap g_N (ALGORITHM.md §2),
+/// Closest-point projection of y on the facet's plane: xi and the gap g_N (docs/THEORY.md §2.3),
 /// with the facet's metric. Returns false for a degenerate facet.
 KOKKOS_INLINE_FUNCTION bool facet_cpp(const double y[3], const double xm[3][3],
                                       const FacetMetric& m, double xi[2], double& gap) {

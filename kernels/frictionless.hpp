@@ -1,6 +1,6 @@
 #pragma once
 // Frictionless contact of one active slave node on one 3-node master facet, by direct
-// elimination (ALGORITHM.md §2, §3, §5; the paper's eq. 47-64 with the exact linearisation).
+// elimination (docs/THEORY.md §2, §3, §5; the paper's eq. 47-64 with the exact linearisation).
 //
 // The slave s lies on master facet (m1, m2, m3) (the facet's node order); its reduced unknowns
 // are q_s = (dxi, deta, dummy). All geometry is taken at the mid-point configuration
@@ -20,7 +20,7 @@
 namespace emc::kernels {
 
 /// Per-slave blocks of P (rows of the Newton increment), Pt (its exact right factor) and X (the
-/// variation of P^T itself times g) for one active frictionless slave (ALGORITHM.md §3, §5).
+/// variation of P^T itself times g) for one active frictionless slave (docs/THEORY.md §3, §5.4).
 /// In the global matrices: P, Pt are the identity on every row but the slave's three; the
 /// slave's dummy column (q_s2) of P and Pt is zero; X is zero outside the blocks below.
 struct FrictionlessBlocks {
@@ -212,7 +212,7 @@ KOKKOS_INLINE_FUNCTION void frictionless_residual(const FrictionlessBlocks& b, c
   }
 }
 
-/// Update steps 2-3 of ALGORITHM.md §5 (eq. 60-64) on the given facet:
+/// Update steps 2-3 of docs/THEORY.md §5.3 (eq. 60-64) on the given facet:
 /// xi := CPP of x_{s,n+1/2} on the facet at n+1/2 (its plane extended; §2); then
 /// dgN = (xs1 - xs0 - N (xm1 - xm0)) . n_{n+1/2};  xs1 -= dgN n_{n+1/2}  (condition (a), eq. 48).
 /// Step 3 moves x_{s,n+1/2} along n, which keeps its CPP on the flat facet (§2), so xi stays the

@@ -1,5 +1,5 @@
 #pragma once
-// Consistent mass and gravity load of a P1 tetrahedron (ALGORITHM.md §1):
+// Consistent mass and gravity load of a P1 tetrahedron (docs/THEORY.md §1.3):
 //   M_AB = rho V_e (1 + delta_AB) / 20 (times I_3),   f_ext_A = rho V_e g / 4.
 #include <Kokkos_Core.hpp>
 

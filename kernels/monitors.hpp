@@ -1,5 +1,5 @@
 #pragma once
-// Per-element contributions to the monitored quantities at t_n (ALGORITHM.md §1, eq. 23-24):
+// Per-element contributions to the monitored quantities at t_n (docs/THEORY.md §1.9, eq. 23-24):
 //   kinetic 1/2 V_A . M_AB V_B, elastic W_e(E_n), potential -f_ext_A . u_A,
 //   L = sum_A M_AB V_B, J = sum_A x_A x (M_AB V_B) about the origin;
 //   also the mass and its first moment sum_AB M_AB x_B (centre of mass = moment / mass).

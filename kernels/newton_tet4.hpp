@@ -1,6 +1,6 @@
 #pragma once
 // One element's contribution to the residual of eq. 20 and to the Newton matrix
-// (2/dt^2) M + K (ALGORITHM.md §1):
+// (2/dt^2) M + K (docs/THEORY.md §1.4):
 //   g_A = (2/dt^2) M_AB (u_{B,n+1} - u_{B,n}) - (2/dt) M_AB V_{B,n} + f_int_A - f_ext_A.
 #include "kernels/em_tet4.hpp"
 #include "kernels/mass_tet4.hpp"

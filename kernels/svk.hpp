@@ -1,5 +1,5 @@
 #pragma once
-// Saint-Venant-Kirchhoff material (ALGORITHM.md §1): E = (F^T F - I)/2 = (H + H^T + H^T H)/2,
+// Saint-Venant-Kirchhoff material (docs/THEORY.md §1.2): E = (F^T F - I)/2 = (H + H^T + H^T H)/2,
 // S(E) = lambda tr(E) I + 2 mu E, W = lambda/2 tr(E)^2 + mu E:E (per unit reference volume).
 #include <Kokkos_Core.hpp>
 
@@ -19,7 +19,7 @@ KOKKOS_INLINE_FUNCTION Lame lame(double young, double poisson) {
 /// E = (H + H^T + H^T H) / 2 from the displacement gradient H = F - I: the same E as
 /// (F^T F - I) / 2 without the cancellation against I, whose round-off (eps, not eps |H|) would
 /// put a force noise of about eps V_e (lambda + 2 mu) |G| on every node of a body near rest,
-/// above the round-off floor of Newton's tolerance (ALGORITHM.md §1).
+/// above the round-off floor of Newton's tolerance (docs/THEORY.md §1.6).
 KOKKOS_INLINE_FUNCTION void green_strain(const double H[3][3], double E[3][3]) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {

@@ -1,5 +1,5 @@
 #pragma once
-// P1 tetrahedron geometry (ALGORITHM.md §1): shape gradients G_A = grad_X N_A, reference
+// P1 tetrahedron geometry (docs/THEORY.md §1.1): shape gradients G_A = grad_X N_A, reference
 // volume V_e, deformation gradient F = I + sum_A u_A (x) G_A. Pure functions of fixed-size
 // arrays, callable from Kokkos kernels.
 #include <Kokkos_Core.hpp>
@@ -47,7 +47,7 @@ KOKKOS_INLINE_FUNCTION double tet_gradients(const double X[4][3], double G[4][3]
   return d / 6.0;
 }
 
-/// H = sum_A u_A (x) G_A, the displacement gradient (F = I + H, ALGORITHM.md §1).
+/// H = sum_A u_A (x) G_A, the displacement gradient (F = I + H, docs/THEORY.md §1.1).
 KOKKOS_INLINE_FUNCTION void displacement_gradient(const double G[4][3], const double u[4][3],
                                                   double H[3][3]) {
   for (int i = 0; i < 3; ++i)
@@ -64,7 +64,7 @@ KOKKOS_INLINE_FUNCTION void identity_plus(const double H[3][3], double F[3][3]) 
     for (int j = 0; j < 3; ++j) F[i][j] = H[i][j] + (i == j ? 1.0 : 0.0);
 }
 
-/// F = I + sum_A u_A (x) G_A  (ALGORITHM.md §1).
+/// F = I + sum_A u_A (x) G_A  (docs/THEORY.md §1.1).
 KOKKOS_INLINE_FUNCTION void deformation_gradient(const double G[4][3], const double u[4][3],
                                                  double F[3][3]) {
   double H[3][3];

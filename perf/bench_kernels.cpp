@@ -74,7 +74,7 @@ static void BM_AssemblyAtomic(benchmark::State& state) {
 BENCHMARK(BM_Assembly)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_AssemblyAtomic)->Arg(20)->Arg(40)->Unit(benchmark::kMillisecond);
 
-/// The elimination of one Newton iteration (ALGORITHM.md §3) on the box of BM_Assembly: the
+/// The elimination of one Newton iteration (docs/THEORY.md §3) on the box of BM_Assembly: the
 /// bottom face fixed (Dirichlet) and every top-face node a stick slave with a dummy beta on its
 /// own dofs, tied to the three nodes of a facet one layer below (weights 0.5, 0.3, 0.2:
 /// a deformable master, the structured reduction) or to a rigid master (an empty row of P:

@@ -39,7 +39,8 @@ using Teuchos::rcp;
 
 namespace {
 
-/// Displacement fixed (Dirichlet) dofs that this rank owns (ALGORITHM.md §3: zero columns of P).
+/// Displacement fixed (Dirichlet) dofs that this rank owns (docs/THEORY.md §3.1: zero columns
+/// of P).
 std::vector<GO> owned_fixed_dofs(const fem::Discretization& disc) {
   std::vector<GO> fixed;
   for (int n : disc.part().owned_nodes)
@@ -204,7 +205,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,
                                                        opt.input);
   // CG needs a symmetric matrix: the mid-point tangent without frictionless contact is; the
-  // energy-momentum tangent (ALGORITHM.md §1) and the frictionless P^T A Pt + X (§5) are not
+  // energy-momentum tangent (docs/THEORY.md §1.4) and the frictionless P^T A Pt + X (§5.4) are not
   bool frictionless = false;
   for (const auto& pr : sim->contact->pairs())
     frictionless |= pr.kind == contact::Kind::frictionless;

@@ -13,7 +13,7 @@ ActiveSetLoop::ActiveSetLoop(const Contact& contact, linalg::Elimination& elim,
                              std::vector<GO> fixed)
     : contact_(contact), constraints_(contact, elim, std::move(fixed)) {}
 
-// ALGORITHM.md §6, one step.
+// docs/THEORY.md §6, one step.
 bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active>& active,
                           const Solve& solve, SettledSet& out, Vector* p) {
   std::vector<Active> trial = active;

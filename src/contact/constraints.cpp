@@ -20,7 +20,7 @@ LawState ActiveConstraints::state(Positions x1) const {
   return s;
 }
 
-// ALGORITHM.md §3: rebuild P only when the active set changes (on any rank: collective).
+// docs/THEORY.md §3, §4.2: rebuild P only when the active set changes (on any rank: collective).
 bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
   trial_ = trial;
   std::vector<std::array<double, 4>> key;

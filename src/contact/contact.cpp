@@ -114,7 +114,7 @@ ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
   return index;
 }
 
-// ALGORITHM.md §3: rows of P compose along chains, P = P_1 P_2 ...
+// docs/THEORY.md §3.5: rows of P compose along chains, P = P_1 P_2 ...
 void Contact::expand_node(int node, int c, double w, const ActiveIndex& index,
                           const Positions::HostMirror& xh, std::vector<int>& path,
                           linalg::PRow& r) const {

@@ -1,4 +1,4 @@
-// Frictionless contact (ALGORITHM.md §5): du_s = N du_m + T dq at n+1/2 with the exact right
+// Frictionless contact (docs/THEORY.md §5): du_s = N du_m + T dq at n+1/2 with the exact right
 // factor Pt and the variation X of P^T; after every Newton update the slave is projected back
 // (update steps 2-3), moving on to a neighbouring facet beyond the hysteresis tol_f.
 #include <Teuchos_TimeMonitor.hpp>
@@ -85,8 +85,9 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
     }
 }
 
-// ALGORITHM.md §5: P rows du_s = N du_m + T dq, the exact right factor Pt and the variation X
-// of P^T; the slave's q dofs are its x and y dofs (dxi, deta), its z dof is the dummy.
+// docs/THEORY.md §5.2, §5.4: P rows du_s = N du_m + T dq, the exact right factor Pt and the
+// variation X of P^T; the slave's q dofs are its x and y dofs (dxi, deta), its z dof is the
+// dummy.
 void Frictionless::rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
                         const Matrix* A, LawRows& out) const {
   const auto entries = mine(s.contact, active);
@@ -142,7 +143,7 @@ void switch_facets(const LawState& s, std::vector<Active>& entries, Refs refs, P
   }
 }
 
-// ALGORITHM.md §5 update steps 2-3 (eq. 60-64) for my frictionless slaves.
+// docs/THEORY.md §5.3 update steps 2-3 (eq. 60-64) for my frictionless slaves.
 void Frictionless::after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const {
   const double tol_f = 1e-3;
   std::vector<std::size_t> where;

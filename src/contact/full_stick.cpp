@@ -1,4 +1,4 @@
-// Full stick (ALGORITHM.md §4): du_s = N(xi) du_m with xi frozen at activation; the slave's
+// Full stick (docs/THEORY.md §4): du_s = N(xi) du_m with xi frozen at activation; the slave's
 // three dofs become dummies with D = beta = tr(A_ss)/3 (eq. 44). With `close gap` (docs/THEORY.md
 // §7.2) Newton starts the slave on its master point, where du_s = N du_m keeps it.
 #include <Teuchos_CommHelpers.hpp>
@@ -26,7 +26,7 @@ class FullStick final : public Law {
   bool releases(const Active&, double fN) const override { return fN < 0; }
 };
 
-// ALGORITHM.md §3-§4: du_s = N du_m; the slave's own column of P is zero (three dummies).
+// docs/THEORY.md §3.1, §4.2: du_s = N du_m; the slave's own column of P is zero (three dummies).
 void FullStick::rows(const LawState& s, const std::vector<Active>& active, const Vector*,
                      const Matrix* A, LawRows& out) const {
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");

@@ -12,7 +12,7 @@ namespace {
 
 using Policy = Kokkos::RangePolicy<ExecSpace>;
 
-/// Per facet f (ALGORITHM.md §2): its grown box and what the CPP needs, computed once per
+/// Per facet f (docs/THEORY.md §2.3, §2.5): its grown box and what the CPP needs, computed once per
 /// grid with kernels::facet_metric, so that the queries give kernels::facet_cpp's bits.
 void fill_records(FacetGrid::FacetsView facets, FacetGrid::PointsView x, double margin,
                   FacetGrid::Records rec, FacetGrid::Boxes box) {
@@ -181,7 +181,7 @@ void fill_cells(const GridShape& s, FacetGrid::Boxes box,
 
 }  // namespace
 
-// ALGORITHM.md §2: the grid of the grown boxes, built in parallel.
+// docs/THEORY.md §2.5: the grid of the grown boxes, built in parallel.
 FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
     : rec_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_records"), facets.extent(0)),
       box_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_boxes"), facets.extent(0)) {
@@ -259,7 +259,7 @@ Kokkos::View<int*, ExecSpace> morton_keys(const GridShape& s, FacetGrid::PointsV
 
 }  // namespace
 
-// ALGORITHM.md §2 for every point (locate), visited in an order that reuses the cache.
+// docs/THEORY.md §2.5 for every point (locate), visited in an order that reuses the cache.
 void FacetGrid::locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) const {
   const int n = static_cast<int>(y.extent(0));
   const GridShape& s = shape_;

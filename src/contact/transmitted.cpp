@@ -1,4 +1,4 @@
-// The force an active slave transmits to its master facet along chains (ALGORITHM.md §3:
+// The force an active slave transmits to its master facet along chains (docs/THEORY.md §3.5:
 // P = P_1 P_2 ...): its own contactless residual plus what its own slaves transmit to it.
 #include <set>
 

@@ -1,4 +1,4 @@
-// The consistent mass matrix of ALGORITHM.md §1 applied to a vector, element by element
+// The consistent mass matrix of docs/THEORY.md §1.3 applied to a vector, element by element
 // (matrix-free: M is constant and needed only for the velocity update of docs/THEORY.md §7).
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/fem/element_loop.hpp"

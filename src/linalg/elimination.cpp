@@ -13,7 +13,7 @@ Elimination::Elimination(RCP<const Map> owned) : owned_(owned) {
   set_constraints({}, {}, {});
 }
 
-// ALGORITHM.md §3: P is the identity except in constrained rows (fixed: empty rows).
+// docs/THEORY.md §3.1: P is the identity except in constrained rows (fixed: empty rows).
 RCP<Matrix> Elimination::build_P(const std::vector<PRow>& rows) const {
   std::map<GO, const PRow*> special;
   for (const auto& r : rows) special[r.row] = &r;
@@ -67,7 +67,7 @@ void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std:
   linearised_ = true;
 }
 
-// D (ALGORITHM.md §3-§4): 1 on fixed dofs, beta on the dummies. Called at every Newton
+// D (docs/THEORY.md §3.2): 1 on fixed dofs, beta on the dummies. Called at every Newton
 // iteration under stick (beta follows A); the masked path takes the diagonal as a vector.
 void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag) {
   std::map<GO, double> diag;
@@ -82,7 +82,7 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
   }
 }
 
-// ALGORITHM.md §3 (and §5: P^T A Pt + X + D with the exact right factor).
+// docs/THEORY.md §3.2 (and §5.4: P^T A Pt + X + D with the exact right factor).
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
   if (masked_ && !linearised_) return masked_reduction_.apply(*A);

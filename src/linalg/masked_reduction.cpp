@@ -78,7 +78,7 @@ void MaskedReduction::import_keep(const Matrix& A) {
   keep_col_stale_ = false;
 }
 
-// ALGORITHM.md §3: (P^T A P + D)_ij = p_i A_ij p_j + D_ij with p the 0/1 diagonal of P.
+// docs/THEORY.md §3.6: (P^T A P + D)_ij = p_i A_ij p_j + D_ij with p the 0/1 diagonal of P.
 RCP<Matrix> MaskedReduction::apply(const Matrix& A) {
   if (graph_.is_null() || col_map_.get() != A.getColMap().get() ||
       graph_->getNodeNumEntries() != A.getNodeNumEntries())

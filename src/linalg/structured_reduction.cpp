@@ -120,9 +120,9 @@ std::vector<char> StructuredReduction::plain_columns(const Matrix& A,
   return plain;
 }
 
-// ALGORITHM.md §3/§5: the contributions P_ki A_ij Pt_jl and the graph of the result. An entry
-// of A in a plain row and a plain column is copied to (i, j) (most of them: found row by row
-// below, without a list); the others, X and D are listed with their weights.
+// docs/THEORY.md §3.6, §5.4: the contributions P_ki A_ij Pt_jl and the graph of the result. An
+// entry of A in a plain row and a plain column is copied to (i, j) (most of them: found row by
+// row below, without a list); the others, X and D are listed with their weights.
 void StructuredReduction::build(const Matrix& A) {
   ++builds_;
   const auto& rows_map = *A.getRowMap();

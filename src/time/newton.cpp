@@ -32,11 +32,11 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
   if (solver_.uses_positions()) X_ = disc_.reference_positions();
 }
 
-// Inexact Newton around ALGORITHM.md §1's Newton (its convergence test and round-off floor
-// are unchanged; the spec leaves the linear tolerance open): the linear solve needs to be
-// accurate only to a fraction sigma of the residual the Newton step leaves anyway. Near the
-// solution that is C r_k^2 (quadratic convergence, C = r_k / r_{k-1}^2 measured in this step
-// or, at the first iterate, in the last step), never below the round-off floor. So the
+// Inexact Newton (docs/THEORY.md §1.7) around the Newton of §1.6 (its convergence test and
+// round-off floor are unchanged): the linear solve needs to be accurate only to a fraction
+// sigma of the residual the Newton step leaves anyway. Near the solution that is C r_k^2
+// (quadratic convergence, C = r_k / r_{k-1}^2 measured in this step or, at the first iterate,
+// in the last step), never below the round-off floor. So the
 // iterates, and the converged residual, are those of exact solves to within sigma (measured:
 // 5% with sigma = 0.01, test_newton), at a fraction of the Krylov iterations of solves to the
 // input's tolerance, which stays the lower bound. An overestimated C loosens one solve, whose
@@ -122,7 +122,7 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       return res;
     }
     if (it == 0) r0 = r;
-    // ALGORITHM.md §1: the tolerance never sits below the round-off of g's terms, nor below
+    // docs/THEORY.md §1.6: the tolerance never sits below the round-off of g's terms, nor below
     // what re-projecting the constrained slaves leaves at every iterate
     double roundoff = hooks_ ? hooks_->residual_roundoff() : 0.0, total = 0;
     Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 1, &roundoff, &total);

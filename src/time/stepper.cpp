@@ -50,7 +50,7 @@ void Stepper::start_iterate(double h, bool no_contact, Vector& u1) const {
     u1.update(h / s_.last_h, *s_.last_increment, 1.0);
 }
 
-// One step of size h with the active-set loop of ALGORITHM.md §6; false if Newton failed.
+// One step of size h with the active-set loop of docs/THEORY.md §6; false if Newton failed.
 bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   const Vector& u0 = *s_.u;
   auto newton = [&](bool empty) -> bool {

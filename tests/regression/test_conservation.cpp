@@ -1,4 +1,4 @@
-// Whole runs without contact asserting the conservation properties of ALGORITHM.md §1.
+// Whole runs without contact asserting the conservation properties of docs/THEORY.md §1.5.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Frictionless contact by direct elimination (ALGORITHM.md §5, §6), whole runs.
+// Frictionless contact by direct elimination (docs/THEORY.md §5, §6), whole runs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,7 +101,7 @@ TEST(Frictionless, NewtonQuadraticWithDeformableMaster) {
   EXPECT_GT(best, 1.7);
 }
 
-// A chain (ALGORITHM.md §3): on the three disks a disk's bottom nodes are slaves on the plane
+// A chain (docs/THEORY.md §3.5): on the three disks a disk's bottom nodes are slaves on the plane
 // and masters of the disk behind. The outer slave's X terms carried through the chained master's
 // row of P keep Newton quadratic there: the accepted solve of every step with a chain needs at
 // most 6 iterations (to the round-off floor, 9-10 decades below the first residual), where the

@@ -1,4 +1,4 @@
-// Full stick contact by direct elimination (ALGORITHM.md §4, §6), whole runs.
+// Full stick contact by direct elimination (docs/THEORY.md §4, §6), whole runs.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Newton converges quadratically on a large-deformation step (ALGORITHM.md §1: the exact,
+// Newton converges quadratically on a large-deformation step (docs/THEORY.md §1.4: the exact,
 // non-symmetric energy-momentum tangent). Linear solves are direct (KLU2) so that the rate
 // measured is Newton's own.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Step control (ALGORITHM.md §1): a step whose Newton fails is retried with dt/2 and dt grows
+// Step control (docs/THEORY.md §1.8): a step whose Newton fails is retried with dt/2 and dt grows
 // back; no step is accepted unconverged, so conservation holds through the cuts; a run that
 // cannot continue stops with a clear error after writing the monitors it had.
 #include <gtest/gtest.h>

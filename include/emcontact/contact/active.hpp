@@ -1,5 +1,6 @@
 #pragma once
-// The active set of contact (ALGORITHM.md §4, §6) as plain records, and what a step reports of it.
+// The active set of contact (docs/THEORY.md §4, §6) as plain records, and what a step reports
+// of it.
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -49,7 +49,7 @@ void normal_forces(Refs refs, Positions x0, Positions x1, OwnedValues g, Values 
 /// none or every facet is degenerate).
 void gap_range(Refs refs, Positions x1, double& lo, double& hi);
 /// r(k): the round-off of entry k's slave position at x1 (an ulp of its coordinates), which a
-/// projection of the slave onto its facet cannot go below (Newton's floor, ALGORITHM.md §1).
+/// projection of the slave onto its facet cannot go below (Newton's floor, docs/THEORY.md §1.6).
 void position_roundoff(Refs refs, Positions x1, Values r);
 
 /// docs/THEORY.md §7.2: 1 where the slave lies behind its facet at x deeper than the round-off.

@@ -1,5 +1,5 @@
 #pragma once
-// The active-set loop of a step (ALGORITHM.md §6): solve with a trial set, activate the slave
+// The active-set loop of a step (docs/THEORY.md §6): solve with a trial set, activate the slave
 // nodes that entered a facet (§6.3), release those in tension or off their master (§6.4), and
 // solve again until the set is settled; then accept (§6.5). The time stepper only asks "solve
 // this step" and reads what was settled.

@@ -1,5 +1,5 @@
 #pragma once
-// The constraints of the active contact set inside Newton (ALGORITHM.md §3-§5): each law's rows
+// The constraints of the active contact set inside Newton (docs/THEORY.md §3-§5): each law's rows
 // of P (and Pt, X for a law whose rows follow the iterate), beta on the dummies (eq. 44, 59),
 // and the law's projection of the start iterate and of every update.
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Contact between the pairs' slave nodes and master facets (ALGORITHM.md §2-§6): the rank's
+// Contact between the pairs' slave nodes and master facets (docs/THEORY.md §2-§6): the rank's
 // contact nodes (docs/THEORY.md §8), activation (§6.3), the quantities the active-set loop
 // reads (normal forces, gaps), the chains of P (§3) and the closure's energy (docs/THEORY.md
 // §7). What a law constrains lives in its Law (law.hpp); the §6 loop in active_set.hpp.

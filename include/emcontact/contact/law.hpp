@@ -1,5 +1,5 @@
 #pragma once
-// One contact law per object (ALGORITHM.md §4 full stick, §5 frictionless): where xi is taken
+// One contact law per object (docs/THEORY.md §4 full stick, §5 frictionless): where xi is taken
 // at activation, the rows it adds to the elimination (P, its exact right factor Pt, the
 // variation X, the dummies' beta), and how it restores its constraints on the iterate. A new law
 // implements this interface and is returned by make_law; the others are not touched.

@@ -1,5 +1,5 @@
 #pragma once
-// Contact pairs (ALGORITHM.md §2): the slave nodes of a deformable body's surface against the
+// Contact pairs (docs/THEORY.md §2.1): the slave nodes of a deformable body's surface against the
 // 3-node facets of a master surface (a deformable body's boundary or a rigid surface body).
 // Node numbering of the contact geometry: deformable nodes keep their global id n in
 // [0, num_nodes); rigid nodes are num_nodes + k, k indexing Model::rigid_X.

@@ -1,5 +1,5 @@
 #pragma once
-// Contact search (ALGORITHM.md §2): a uniform grid of the master facets' bounding boxes
+// Contact search (docs/THEORY.md §2.5): a uniform grid of the master facets' bounding boxes
 // (expanded by a margin), rebuilt from the current positions whenever it is needed, and the
 // projection of a point on the closest valid facet among the candidates of its cell.
 // Everything lives in Views on the node's device (built with labelled parallel kernels); the

@@ -67,17 +67,18 @@ class Discretization {
   Teuchos::RCP<Vector> new_overlap_vector() const;
 
   /// Residual of eq. 20 into r, the Newton matrix (2/dt^2) M + K into A (if not null), and
-  /// the round-off scale of r (ALGORITHM.md §1 Newton tolerance) into scale (if not null).
+  /// the round-off scale of r (docs/THEORY.md §1.6, Newton's round-off floor) into scale (if
+  /// not null).
   /// Element loops as model().scatter says: coloured, the sums of every entry are in the same
   /// order whatever the number of threads (bitwise reproducible).
   /// u0, V0 = state at t_n, u1 = current iterate; all owned vectors.
   AssemblyInfo assemble(const Vector& u0, const Vector& V0, const Vector& u1, double dt,
                         FEMatrix* A, Vector& r, Vector* scale) const;
 
-  /// Mv = M v with the consistent mass matrix (ALGORITHM.md §1); owned vectors.
+  /// Mv = M v with the consistent mass matrix (docs/THEORY.md §1.3); owned vectors.
   void apply_mass(const Vector& v, Vector& Mv) const;
 
-  /// Monitored quantities of (u, V) summed over all ranks (ALGORITHM.md §1 eq. 23-24).
+  /// Monitored quantities of (u, V) summed over all ranks (docs/THEORY.md §1.9, eq. 23-24).
   kernels::Monitors monitors(const Vector& u, const Vector& V) const;
 
   /// Von Mises stress per owned element (on element_map()).

@@ -20,7 +20,7 @@ struct Body {
   std::array<double, 3> velocity{}, angular_velocity{};
   mesh::BodyMesh mesh;  ///< the body's own mesh (local node numbers), for its named surfaces
   /// A rigid surface body (no tets): its nodes are not unknowns; they live in Model::rigid_X
-  /// from rigid_begin on, fixed in space (ALGORITHM.md §3: a master whose motion is prescribed).
+  /// from rigid_begin on, fixed in space (docs/THEORY.md §1.3, §2.1).
   bool rigid = false;
   int rigid_begin = 0;
 };
@@ -46,7 +46,7 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
                   const std::string& file);
 
 /// Initial velocity per global node (3 each): v + omega x (X - X_c), X_c the body's centre of
-/// mass (ALGORITHM.md §1 consistent mass: the volume-weighted centroid of its tets).
+/// mass (docs/THEORY.md §1.3 consistent mass: the volume-weighted centroid of its tets).
 std::vector<double> initial_velocity(const Model& m);
 
 /// Centre of mass of body b in the reference configuration.

@@ -1,5 +1,5 @@
 #pragma once
-// Direct elimination as a transformation (ALGORITHM.md §3): du = P dq, the reduced Newton
+// Direct elimination as a transformation (docs/THEORY.md §3): du = P dq, the reduced Newton
 // system (P^T A P + D) dq = -P^T g keeps the number of equations fixed. A fixed (Dirichlet)
 // dof has a zero column in P and a dummy row 1 * dq = 0 (D = 1 there); later, contact slaves
 // add rows of P that tie them to their master facet, with D = beta on their dummies.
@@ -14,7 +14,7 @@ namespace emc::linalg {
 
 /// What constraints do inside Newton (implemented by contact): set the iterate-dependent
 /// parts of the elimination before the reduction, and restore the nonlinear constraints after
-/// the update u += P dq (ALGORITHM.md §5 update steps 2-3).
+/// the update u += P dq (docs/THEORY.md §3.4, §5.3 update steps 2-3).
 class ConstraintHooks {
  public:
   virtual ~ConstraintHooks() = default;
@@ -26,7 +26,7 @@ class ConstraintHooks {
   /// After u1 += P dq.
   virtual void after_update(const Vector& u0, Vector& u1) = 0;
   /// This rank's share (a sum of squares) of the reduced residual that restoring the constraints
-  /// leaves at every iterate (the projection's round-off; Newton's floor, ALGORITHM.md §1).
+  /// leaves at every iterate (the projection's round-off; Newton's floor, docs/THEORY.md §1.6).
   virtual double residual_roundoff() const { return 0; }
 };
 

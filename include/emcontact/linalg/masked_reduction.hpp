@@ -1,5 +1,5 @@
 #pragma once
-// P^T A P + D when P is diagonal with entries 0 or 1 (ALGORITHM.md §3: fixed dofs, and full
+// P^T A P + D when P is diagonal with entries 0 or 1 (docs/THEORY.md §3.6: fixed dofs, and full
 // stick against rigid masters, whose slave rows of P are empty): the entries of A in a
 // constrained row or column are zeroed and D is added on the diagonal, on a copy of A's graph
 // made once. No sparse products; the result is exactly the triple product's (products with

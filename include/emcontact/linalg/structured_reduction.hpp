@@ -1,5 +1,5 @@
 #pragma once
-// P^T A Pt + X + D when P and Pt are the identity outside a few rows (ALGORITHM.md §3, §5:
+// P^T A Pt + X + D when P and Pt are the identity outside a few rows (docs/THEORY.md §3.6, §5.4:
 // the active slaves' rows, fixed dofs' empty rows). Every entry A_ij contributes
 // P_ki A_ij Pt_jl to (k, l) for the entries of P's row i and Pt's row j; a plain row is the
 // single entry (i, 1). Which (A entry, weight, weight) lands on which position of the reduced
@@ -22,7 +22,7 @@ struct PRow {
   std::vector<double> weights;
 };
 
-/// One entry of the variation X of P^T (ALGORITHM.md §5); its row may be owned elsewhere.
+/// One entry of the variation X of P^T (docs/THEORY.md §5.4); its row may be owned elsewhere.
 struct Entry {
   GO row, col;
   double value;

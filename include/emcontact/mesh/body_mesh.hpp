@@ -28,7 +28,7 @@ inline bool is_rigid(const BodyMesh& m) {
   return m.tets.empty();
 }
 
-/// Signed reference volume of tet e (ALGORITHM.md §1: V_e > 0 for a valid element).
+/// Signed reference volume of tet e (docs/THEORY.md §1.1: V_e > 0 for a valid element).
 double tet_volume(const BodyMesh& m, int e);
 
 /// Throws InputError naming `where` and the first element (1-based id, as in the .msh file or

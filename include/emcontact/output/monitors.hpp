@@ -1,5 +1,5 @@
 #pragma once
-// DIR/monitors.csv: one row per accepted step (ALGORITHM.md §1 quantities). Rank 0 only.
+// DIR/monitors.csv: one row per accepted step (docs/THEORY.md §1.9). Rank 0 only.
 #include <array>
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Newton on the full residual of eq. 20, reduced by the elimination (ALGORITHM.md §1, §3):
+// Newton on the full residual of eq. 20, reduced by the elimination (docs/THEORY.md §1.6, §3):
 //   (P^T A P + D) dq = -P^T g,  u_{n+1} += P dq,
 // converged when ||P^T g|| <= max(rtol ||P^T g_0||, atol, 100 eps ||scale||), where scale
 // bounds the round-off of g's four terms. No step is ever accepted unconverged.

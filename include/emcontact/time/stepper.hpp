@@ -1,5 +1,5 @@
 #pragma once
-// Time stepping with the energy-momentum (or mid-point) scheme (ALGORITHM.md §1, eq. 19):
+// Time stepping with the energy-momentum (or mid-point) scheme (docs/THEORY.md §1.4, eq. 19):
 // V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n, with the active-set loop of contact (§6) around
 // Newton. A step whose Newton fails is retried with dt/2 (up to `max step cuts` times); dt
 // doubles back toward the nominal dt after `grow after` good steps.

@@ -1,5 +1,6 @@
-// Contact geometry without MPI (ALGORITHM.md §2): the facet CPP is the orthogonal projection,
-// and the grid search returns exactly what a brute-force loop over all facets returns.
+// Contact geometry without MPI (docs/THEORY.md §2.3, §2.5): the facet CPP is the orthogonal
+// projection, and the grid search returns exactly what a brute-force loop over all facets
+// returns.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -78,7 +79,7 @@ bool brute_cpp(const double y[3], const std::vector<std::array<int, 3>>& facets,
   return k::facet_cpp(y, xm, h.xi, h.gap) && (in_box || margin < 0);
 }
 
-/// ALGORITHM.md §2 and §5 step 2 over all facets (no grid): what FacetGrid::locate answers,
+/// docs/THEORY.md §2.5 and §5.5 over all facets (no grid): what FacetGrid::locate answers,
 /// with the same tie tolerance.
 emc::contact::Hit brute_force(const double y[3], const std::vector<std::array<int, 3>>& facets,
                               const std::vector<double>& x, double margin, double tie,

@@ -1,4 +1,4 @@
-// Element kernels without MPI or Tpetra (ALGORITHM.md §1): exact tangent against central
+// Element kernels without MPI or Tpetra (docs/THEORY.md §1.4-§1.5): exact tangent against central
 // finite differences, the per-element energy identity (eq. 25), vanishing sum and moment of
 // the internal forces, consistent mass.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Frictionless contact by direct elimination, one slave on one master facet (ALGORITHM.md §3,
+// Frictionless contact by direct elimination, one slave on one master facet (docs/THEORY.md §3,
 // §5), without MPI or Tpetra: a dense 4-node system (slave = node 0, masters = nodes 1..3,
 // 12 dofs, node-major 3A+i) with a synthetic residual g(u) = A0 (u - u_n) + b (+ a cubic term),
 // so the exact Jacobian of g is known. Reduced unknowns q: q_0, q_1 = dxi, deta of the slave,

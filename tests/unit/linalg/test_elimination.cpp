@@ -1,4 +1,4 @@
-// The elimination of ALGORITHM.md §3: the reduced matrix P^T A P + D and residual P^T g that
+// The elimination of docs/THEORY.md §3: the reduced matrix P^T A P + D and residual P^T g that
 // the code builds with Tpetra equal a dense reference built here, on 1 and 2 ranks; the
 // expansion du = P dq moves a stick slave exactly as N times its master nodes.
 #include <gtest/gtest.h>
@@ -138,7 +138,7 @@ TEST(Elimination, MatchesDenseReference) {
   EXPECT_LT(gerr, 1e-14 * norm);
 
   // with a right factor Pt (slave rows differ) and an X (some entries in rows owned elsewhere,
-  // duplicates summed): P^T A Pt + X + D (ALGORITHM.md §5)
+  // duplicates summed): P^T A Pt + X + D (docs/THEORY.md §5.4)
   {
     std::vector<linalg::PRow> pt_all;
     for (const auto& r : rows_all) {
