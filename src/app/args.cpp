@@ -1,3 +1,6 @@
+#include <Trilinos_version.h>
+
+#include <Kokkos_Core.hpp>
 #include <cstring>
 
 #include "emcontact/app/run.hpp"
@@ -16,7 +19,33 @@ std::string usage() {
          "  --restart   continue from a checkpoint (Output/checkpoint every): the monitors of its\n"
          "              directory up to its step are kept and the run goes on from there, in that\n"
          "              directory, or in a new DIR given by --output (a branch)\n"
-         "One run at a time per DIR (DIR/.emcontact.lock). Parameters: inputs/README.md.";
+         "  --version   print emcontact's, Trilinos' and Kokkos' versions and Kokkos' backend\n"
+         "  --help, -h  this text\n"
+         "One run at a time per DIR (DIR/.emcontact.lock). Parameters: inputs/README.md.\n"
+         "Kokkos' own options (e.g. --kokkos-num-threads=N) pass through: --kokkos-help lists "
+         "them.";
+}
+
+std::string version() {
+  const int kv = KOKKOS_VERSION;
+  return std::string("emcontact ") + EMC_VERSION + " (git " + EMC_GIT_COMMIT + ")\nTrilinos " +
+         TRILINOS_VERSION_STRING + ", Kokkos " + std::to_string(kv / 10000) + "." +
+         std::to_string(kv / 100 % 100) + "." + std::to_string(kv % 100) +
+         ", default execution space " + Kokkos::DefaultExecutionSpace::name();
+}
+
+std::string early_option(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--set" || a == "--output" || a == "--restart") {
+      ++i;  // a value, whatever it reads
+    } else if (a == "-h" || a == "--help") {
+      return "help";
+    } else if (a == "--version") {
+      return "version";
+    }
+  }
+  return "";
 }
 
 Options parse_args(int argc, char** argv) {

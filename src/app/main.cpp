@@ -2,7 +2,9 @@
 #include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <string>
 
 #include "emcontact/app/error_exit.hpp"
 #include "emcontact/app/run.hpp"
@@ -10,7 +12,24 @@
 #include "emcontact/error.hpp"
 #include "emcontact/output/hdf5_file.hpp"
 
+namespace {
+/// Rank 0 of the job, or not under an MPI launcher, from the launchers' environment (MPI is not
+/// started yet).
+bool first_process() {
+  for (const char* v : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* r = std::getenv(v)) return std::string(r) == "0";
+  return true;
+}
+}  // namespace
+
 int main(int argc, char** argv) {
+  // --help and --version answer before MPI and Kokkos start
+  const std::string early = emc::app::early_option(argc, argv);
+  if (!early.empty()) {
+    if (first_process())
+      std::cout << (early == "help" ? emc::app::usage() : emc::app::version()) << std::endl;
+    return 0;
+  }
   Tpetra::ScopeGuard scope(&argc, &argv);
   emc::output::silence_hdf5_errors();  // errors are reported in one line each
   auto comm = Tpetra::getDefaultComm();

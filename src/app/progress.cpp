@@ -7,8 +7,7 @@ namespace emc::app {
 Progress::Progress(bool enabled, double end_time)
     : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0), end_(end_time) {}
 
-void Progress::update(long step, double t, double dt, int newton, double energy_error,
-                      int active) {
+void Progress::update(long step, double t, double dt, int newton, double energy_error, int active) {
   if (!enabled_) return;
   char buf[200];
   const int n = std::snprintf(buf, sizeof buf,

@@ -13,10 +13,10 @@ namespace emc::fuzz {
 /// Values that break naive parsers: overflow, sign, NaN, empty, huge counts, non-numbers.
 inline const std::vector<std::string>& extreme_tokens() {
   static const std::vector<std::string> t = {
-      "0",    "-1",      "1e308",          "-1e308",     "nan",  "inf",        "-inf",
-      "",     "4294967296", "2147483648", "-2147483649", "9999999999999999999", "1e-320",
-      "0x10", "1.5",     "abc",            "{1,2}",      "\"",   "<",          "&amp;",
-      "Array(double)", "{1,2,3,4}", "{}", "1,2,3"};
+      "0",      "-1",    "1e308",         "-1e308",     "nan",         "inf",
+      "-inf",   "",      "4294967296",    "2147483648", "-2147483649", "9999999999999999999",
+      "1e-320", "0x10",  "1.5",           "abc",        "{1,2}",       "\"",
+      "<",      "&amp;", "Array(double)", "{1,2,3,4}",  "{}",          "1,2,3"};
   return t;
 }
 
@@ -39,20 +39,32 @@ class Mutator {
   std::string once(std::string s) {
     if (s.empty()) return extreme_tokens()[pick(extreme_tokens().size())];
     switch (pick(10)) {
-      case 0: s[pick(s.size())] = static_cast<char>(rng_() & 0xff); return s;
-      case 1: s.insert(pick(s.size() + 1), 1, static_cast<char>(rng_() & 0xff)); return s;
+      case 0:
+        s[pick(s.size())] = static_cast<char>(rng_() & 0xff);
+        return s;
+      case 1:
+        s.insert(pick(s.size() + 1), 1, static_cast<char>(rng_() & 0xff));
+        return s;
       case 2: {
-        const std::size_t at = pick(s.size()), len = 1 + pick(std::min<std::size_t>(64, s.size() - at));
+        const std::size_t at = pick(s.size()),
+                          len = 1 + pick(std::min<std::size_t>(64, s.size() - at));
         return s.erase(at, len);
       }
       case 3: {
-        const std::size_t at = pick(s.size()), len = 1 + pick(std::min<std::size_t>(256, s.size() - at));
+        const std::size_t at = pick(s.size()),
+                          len = 1 + pick(std::min<std::size_t>(256, s.size() - at));
         return s.insert(pick(s.size() + 1), s.substr(at, len));
       }
-      case 4: s.resize(pick(s.size())); return s;
-      case 5: case 6: return replace_number(std::move(s));
-      case 7: return line_edit(std::move(s));
-      default: return replace_quoted(std::move(s));
+      case 4:
+        s.resize(pick(s.size()));
+        return s;
+      case 5:
+      case 6:
+        return replace_number(std::move(s));
+      case 7:
+        return line_edit(std::move(s));
+      default:
+        return replace_quoted(std::move(s));
     }
   }
 
@@ -84,12 +96,18 @@ class Mutator {
     }
     const std::size_t i = pick(lines.size()), j = pick(lines.size());
     switch (pick(3)) {
-      case 0: lines.erase(lines.begin() + static_cast<long>(i)); break;
-      case 1: lines.insert(lines.begin() + static_cast<long>(i), lines[j]); break;
-      default: std::swap(lines[i], lines[j]);
+      case 0:
+        lines.erase(lines.begin() + static_cast<long>(i));
+        break;
+      case 1:
+        lines.insert(lines.begin() + static_cast<long>(i), lines[j]);
+        break;
+      default:
+        std::swap(lines[i], lines[j]);
     }
     std::string out;
-    for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? "\n" : "");
+    for (std::size_t k = 0; k < lines.size(); ++k)
+      out += lines[k] + (k + 1 < lines.size() ? "\n" : "");
     return out;
   }
 
@@ -101,11 +119,11 @@ class Mutator {
     if (quotes.size() < 2) return replace_number(std::move(s));
     const std::size_t k = pick(quotes.size() / 2) * 2;
     const std::size_t b = quotes[k] + 1, e = quotes[k + 1];
-    static const std::vector<std::string> names = {"int", "double", "string", "bool",
-                                                   "Array(double)", "Array(int)", "ParameterList",
-                                                   "type", "value", "name", "file", "box"};
-    const std::string& r = pick(2) == 0 ? names[pick(names.size())]
-                                        : extreme_tokens()[pick(extreme_tokens().size())];
+    static const std::vector<std::string> names = {
+        "int",           "double", "string", "bool", "Array(double)", "Array(int)",
+        "ParameterList", "type",   "value",  "name", "file",          "box"};
+    const std::string& r =
+        pick(2) == 0 ? names[pick(names.size())] : extreme_tokens()[pick(extreme_tokens().size())];
     return s.replace(b, e - b, r);
   }
 };

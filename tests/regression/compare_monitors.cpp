@@ -16,8 +16,8 @@ using emc::output::MonitorRow;
 namespace {
 
 std::vector<double> physical(const MonitorRow& r) {
-  return {r.time,   r.kinetic, r.elastic, r.potential, r.total,  r.L[0],   r.L[1],
-          r.L[2],   r.J[0],    r.J[1],    r.J[2],      r.com[0], r.com[1], r.com[2]};
+  return {r.time, r.kinetic, r.elastic, r.potential, r.total,  r.L[0],   r.L[1],
+          r.L[2], r.J[0],    r.J[1],    r.J[2],      r.com[0], r.com[1], r.com[2]};
 }
 const char* kNames[] = {"time", "kinetic", "elastic", "potential", "total", "Lx",    "Ly",
                         "Lz",   "Jx",      "Jy",      "Jz",        "com_x", "com_y", "com_z"};
@@ -67,9 +67,10 @@ int main(int argc, char** argv) {
       }
     }
     const double d = std::fabs(physical(a[wr])[wc] - physical(b[wr])[wc]);
-    std::printf("%zu rows: worst %s at row %zu: |diff| %.3e = %.3g x allowed (scale %.3e); %d "
-                "values out of tolerance\n",
-                a.size(), kNames[wc], wr, d, worst, scale[wc], bad);
+    std::printf(
+        "%zu rows: worst %s at row %zu: |diff| %.3e = %.3g x allowed (scale %.3e); %d "
+        "values out of tolerance\n",
+        a.size(), kNames[wc], wr, d, worst, scale[wc], bad);
     return bad ? 1 : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "compare_monitors: %s\n", e.what());

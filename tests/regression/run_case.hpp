@@ -2,7 +2,6 @@
 // Runs a whole case in-process (the same code path as the emcontact binary) and returns its
 // monitors. Output goes to a fresh directory under the build tree.
 #include <Tpetra_Core.hpp>
-
 #include <filesystem>
 #include <string>
 #include <vector>

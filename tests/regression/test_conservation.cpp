@@ -46,17 +46,18 @@ TEST(Conservation, FreeFallUnderGravity) {
   const auto& r0 = rows.front();
   const double mass = 1000 * 1.0 * 0.5 * 0.3;
   double scale = 0, worst_E = 0, worst_x = 0, worst_L = 0;
-  for (const auto& r : rows) scale = std::max(scale, r.kinetic + r.elastic + std::fabs(r.potential));
+  for (const auto& r : rows)
+    scale = std::max(scale, r.kinetic + r.elastic + std::fabs(r.potential));
   for (const auto& r : rows) {
     const double t = r.time;
     worst_E = std::max(worst_E, std::fabs(r.total - r0.total) / scale);
     const double z = r0.com[2] + 0.5 * g * t * t, x = r0.com[0] + 0.3 * t, y = r0.com[1] + 0.1 * t;
-    worst_x = std::max({worst_x, std::fabs(r.com[2] - z), std::fabs(r.com[0] - x),
-                        std::fabs(r.com[1] - y)});
+    worst_x = std::max(
+        {worst_x, std::fabs(r.com[2] - z), std::fabs(r.com[0] - x), std::fabs(r.com[1] - y)});
     worst_L = std::max(worst_L, std::fabs(r.L[2] - (r0.L[2] + mass * g * t)) / (mass * 9.81));
   }
-  std::printf("gravity: E drift %.3e (of max K+W+|Pi|), com error %.3e m, Lz error %.3e\n",
-              worst_E, worst_x, worst_L);
+  std::printf("gravity: E drift %.3e (of max K+W+|Pi|), com error %.3e m, Lz error %.3e\n", worst_E,
+              worst_x, worst_L);
   EXPECT_LT(worst_E, 1e-10);
   EXPECT_LT(worst_x, 1e-10 * 4.905);  // relative to the fall distance g t^2 / 2 at t = 1
   EXPECT_LT(worst_L, 1e-10);
@@ -70,7 +71,8 @@ TEST(Conservation, CantileverWithDirichletConservesEnergy) {
   ASSERT_GT(rows.size(), 50u);
   const auto& r0 = rows.front();
   double scale = 0, worst = 0, wmax = 0;
-  for (const auto& r : rows) scale = std::max(scale, r.kinetic + r.elastic + std::fabs(r.potential));
+  for (const auto& r : rows)
+    scale = std::max(scale, r.kinetic + r.elastic + std::fabs(r.potential));
   for (const auto& r : rows) {
     worst = std::max(worst, std::fabs(r.total - r0.total) / scale);
     wmax = std::max(wmax, r.elastic);
@@ -78,6 +80,6 @@ TEST(Conservation, CantileverWithDirichletConservesEnergy) {
   std::printf("cantilever: E drift %.3e of %.3e, max W %.3e, final Lz %.3e\n", worst, scale, wmax,
               rows.back().L[2]);
   EXPECT_LT(worst, 1e-10);
-  EXPECT_GT(wmax, 0.1 * scale);                 // the beam bends substantially
+  EXPECT_GT(wmax, 0.1 * scale);                                // the beam bends substantially
   EXPECT_GT(std::fabs(rows.back().com[2] - r0.com[2]), 1e-3);  // and sags
 }

@@ -28,7 +28,8 @@ TEST(FullStick, BlockDroppedOnRigidPlane) {
   const auto rows = run_case("drop.xml", {}, "out_drop");
   const auto& r0 = rows.front();
   double worst = 0;
-  for (const auto& r : rows) worst = std::max(worst, std::fabs(r.total - r0.total) / std::fabs(r0.total));
+  for (const auto& r : rows)
+    worst = std::max(worst, std::fabs(r.total - r0.total) / std::fabs(r0.total));
   std::printf("drop: %zu steps, %d impacts, max |E-E0|/|E0| = %.3e\n", rows.size() - 1,
               impacts(rows), worst);
   EXPECT_LT(worst, 1e-8);
@@ -55,7 +56,8 @@ TEST(FullStick, TwoDeformableBodiesConserveLinearMomentumAndEnergy) {
   // |L0| of the pair can be small: judge L against the sum of the bodies' momenta (8 kg each)
   const double p_scale = 8.0 * std::hypot(0.5, 0.1) + 8.0 * std::hypot(0.3, 0.1);
   double dL = 0;
-  for (const auto& r : rows) dL = std::max(dL, norm3(emc::testing::diff3(r.L, rows[0].L)) / p_scale);
+  for (const auto& r : rows)
+    dL = std::max(dL, norm3(emc::testing::diff3(r.L, rows[0].L)) / p_scale);
   int contact_steps = 0;
   for (const auto& r : rows) contact_steps += r.active_contacts > 0;
   std::printf("two blocks: %d contact steps, drifts E %.3e L %.3e (of sum |m v|) J %.3e\n",

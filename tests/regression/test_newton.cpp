@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <Tpetra_Core.hpp>
-
 #include <cmath>
 
 #include "emcontact/app/meshes.hpp"
@@ -59,7 +58,8 @@ TEST(Newton, QuadraticOnLargeDeformationStep) {
   const auto res = newton.solve(u0, *V0, 0.05, u1);
   const auto& r = res.residuals;
   ASSERT_GE(r.size(), 4u);
-  for (std::size_t k = 0; k < r.size(); ++k) std::printf("  iterate %zu: |P^T g| = %.3e\n", k, r[k]);
+  for (std::size_t k = 0; k < r.size(); ++k)
+    std::printf("  iterate %zu: |P^T g| = %.3e\n", k, r[k]);
   // order estimates p_k = log(r_{k+1}/r_k) / log(r_k/r_{k-1}) while well above round-off
   const double noise = 1e-13 * r[0];  // round-off floor here is about 2e-15 r[0]
   double best = 0;

@@ -14,11 +14,11 @@ using emc::testing::run_case;
 // With at most 4 Newton iterations, most 0.04 s steps of the fast tumbling box fail and are
 // cut to 0.02 s; after `grow after` good steps dt is restored to 0.04 s (and cut again).
 TEST(StepControl, CutsAndGrowsBackWithoutLosingConservation) {
-  const auto rows = run_case("tumbling.xml",
-                             {"Time/dt=0.04", "Time/end=0.4", "Solver/Newton/max iterations=4",
-                              "Solver/Newton/relative tolerance=1e-8",
-                              "Bodies/block/Initial/angular velocity={0,0,12}"},
-                             "out_step_control");
+  const auto rows = run_case(
+      "tumbling.xml",
+      {"Time/dt=0.04", "Time/end=0.4", "Solver/Newton/max iterations=4",
+       "Solver/Newton/relative tolerance=1e-8", "Bodies/block/Initial/angular velocity={0,0,12}"},
+      "out_step_control");
   double dt_min = 1, dt_max = 0;
   for (std::size_t k = 1; k < rows.size(); ++k) {
     dt_min = std::min(dt_min, rows[k].dt);

@@ -11,7 +11,8 @@ inline emc::fem::Model box_model(int n) {
   auto id = [n](int i, int j, int l) { return (l * (n + 1) + j) * (n + 1) + i; };
   for (int l = 0; l <= n; ++l)
     for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) m.X.insert(m.X.end(), {double(i) / n, double(j) / n, double(l) / n});
+      for (int i = 0; i <= n; ++i)
+        m.X.insert(m.X.end(), {double(i) / n, double(j) / n, double(l) / n});
   const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   for (int l = 0; l < n; ++l)
     for (int j = 0; j < n; ++j)

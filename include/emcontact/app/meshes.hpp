@@ -1,6 +1,5 @@
 #pragma once
 #include <Teuchos_ParameterList.hpp>
-
 #include <vector>
 
 #include "emcontact/mesh/body_mesh.hpp"

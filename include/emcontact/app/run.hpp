@@ -20,6 +20,11 @@ struct Options {
 /// Parses argv; throws InputError with the usage on a bad command line.
 Options parse_args(int argc, char** argv);
 std::string usage();
+/// emcontact's version (and git commit), the Trilinos version and Kokkos' default backend.
+std::string version();
+/// "help", "version" or "" for the first of --help/-h and --version on the command line,
+/// looked for before MPI and Kokkos start (Kokkos would print its own option list first).
+std::string early_option(int argc, char** argv);
 
 struct Summary {
   long steps = 0;

@@ -22,9 +22,9 @@ BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string
 
 /// Reads a Gmsh .msh file (format 4.1) with our strict parser (src/mesh/msh_parser.hpp: ASCII
 /// or binary, every count, tag and reference checked, no Gmsh involved): all 4-node tets (or
-/// those of the physical volume `volume` if not empty) and every physical surface as a named surface.
-/// A file with no tets at all but 3-node triangles (and `volume` empty) is a rigid surface:
-/// the triangles' nodes, no tets, every physical surface by name plus `surface` (all
+/// those of the physical volume `volume` if not empty) and every physical surface as a named
+/// surface. A file with no tets at all but 3-node triangles (and `volume` empty) is a rigid
+/// surface: the triangles' nodes, no tets, every physical surface by name plus `surface` (all
 /// triangles), oriented as in the file.
 BodyMesh read_msh(const std::string& file, const std::string& volume, const std::string& where);
 

@@ -16,14 +16,16 @@ struct MonitorRow {
   // extra columns, after the fixed ones
   double dt = 0;
   int linear_iterations = 0;
-  std::array<double, 3> com{};  ///< centre of mass (sum M x / sum M)
+  std::array<double, 3> com{};      ///< centre of mass (sum M x / sum M)
   double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active slave nodes (0 if none)
   int contact_resolves = 0;         ///< extra solves of the step for activation/release (§6)
-  double normal_force_min = 0;      ///< smallest f_N of the active nodes at the accepted solve (0 if none)
+  double normal_force_min =
+      0;  ///< smallest f_N of the active nodes at the accepted solve (0 if none)
 };
 
 /// The fixed header: step,time,kinetic,elastic,potential,total,Lx,Ly,Lz,Jx,Jy,Jz,
-/// active_contacts,newton_iterations, then dt,linear_iterations,com_x,com_y,com_z,gap_min,gap_max,contact_resolves,normal_force_min.
+/// active_contacts,newton_iterations, then
+/// dt,linear_iterations,com_x,com_y,com_z,gap_min,gap_max,contact_resolves,normal_force_min.
 std::string monitor_header();
 std::string format_row(const MonitorRow& r);  ///< %.17g for doubles: round-trips exactly
 

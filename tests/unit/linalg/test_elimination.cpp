@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <Tpetra_Core.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -52,7 +51,8 @@ Teuchos::RCP<Matrix> distributed(const std::vector<std::vector<double>>& Ad,
         cols.push_back(j);
         vals.push_back(Ad[i][j]);
       }
-    A->insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols), Teuchos::ArrayView<const double>(vals));
+    A->insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols),
+                          Teuchos::ArrayView<const double>(vals));
   }
   A->fillComplete();
   return A;
@@ -116,7 +116,8 @@ TEST(Elimination, MatchesDenseReference) {
   auto Ar = elim.reduce_matrix(A);
 
   // dense reference
-  std::vector<std::vector<double>> P(kN, std::vector<double>(kN, 0.0)), R(kN, std::vector<double>(kN, 0.0));
+  std::vector<std::vector<double>> P(kN, std::vector<double>(kN, 0.0)),
+      R(kN, std::vector<double>(kN, 0.0));
   for (int i = 0; i < kN; ++i) P[i][i] = 1;
   for (GO g : fixed_all) P[g][g] = 0;
   for (const auto& r : rows_all) {
@@ -148,7 +149,8 @@ TEST(Elimination, MatchesDenseReference) {
       q.weights.push_back(0.25 + r.row);
       pt_all.push_back(q);
     }
-    std::vector<linalg::Entry> X_all = {{15, 3, 0.5}, {3, 16, -0.7}, {12, 12, 0.1}, {12, 12, 0.2}, {4, 17, 1.5}};
+    std::vector<linalg::Entry> X_all = {
+        {15, 3, 0.5}, {3, 16, -0.7}, {12, 12, 0.1}, {12, 12, 0.2}, {4, 17, 1.5}};
     std::vector<linalg::PRow> pt;
     for (const auto& r : pt_all)
       if (map->isNodeGlobalElement(r.row)) pt.push_back(r);
@@ -265,8 +267,8 @@ TEST(Elimination, MaskedPathIsExact) {
       for (int j = 0; j < kN; ++j) {
         double expect = kept(i) && kept(j) ? Ad[i][j] : 0.0;
         if (i == j && !kept(i))
-          expect = std::find(fixed_all.begin(), fixed_all.end(), i) != fixed_all.end() ? 1.0
-                                                                                        : beta + i;
+          expect =
+              std::find(fixed_all.begin(), fixed_all.end(), i) != fixed_all.end() ? 1.0 : beta + i;
         mismatches += row[j] != expect;
       }
     }
@@ -284,7 +286,8 @@ std::vector<std::vector<double>> dense_reduced(const std::vector<std::vector<dou
                                                const std::vector<linalg::PRow>& p_rows,
                                                const std::vector<linalg::PRow>& pt_rows,
                                                const std::vector<linalg::Entry>& X, double beta) {
-  std::vector<std::vector<double>> P(kN, std::vector<double>(kN, 0.0)), R(kN, std::vector<double>(kN, 0.0));
+  std::vector<std::vector<double>> P(kN, std::vector<double>(kN, 0.0)),
+      R(kN, std::vector<double>(kN, 0.0));
   for (int i = 0; i < kN; ++i) P[i][i] = 1;
   for (GO g : fixed) P[g][g] = 0;
   for (const auto& r : p_rows) {
@@ -345,8 +348,9 @@ TEST(Elimination, StructuredPathReusesItsPattern) {
       p_all.push_back(p);
       pt_all.push_back(pt);
     }
-    const std::vector<linalg::Entry> X_all = {
-        {15, 3 * masters[pass][0], 0.5 + pass}, {3 * masters[pass][1], 16, -0.7}, {12, 12, 0.1 * pass}};
+    const std::vector<linalg::Entry> X_all = {{15, 3 * masters[pass][0], 0.5 + pass},
+                                              {3 * masters[pass][1], 16, -0.7},
+                                              {12, 12, 0.1 * pass}};
     std::vector<GO> fixed;
     std::vector<linalg::PRow> p, pt;
     std::vector<std::pair<GO, double>> dummies;

@@ -22,9 +22,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-
-
-
 /// Properties every generated mesh has: positive tets, every node used, named surfaces that
 /// partition the closed, outward boundary.
 void expect_valid_generated(const BodyMesh& m, const std::set<std::string>& names) {

@@ -13,7 +13,6 @@
 
 namespace {
 
-
 /// Fake monitors: a decaying kinetic energy traded for elastic energy, a slowly turning L.
 void write_monitors(const std::string& path, int steps) {
   emc::output::MonitorWriter w(path);
