@@ -53,7 +53,8 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
   }
   const GO q[2] = {fem::dof_gid(a.slave, 0), fem::dof_gid(a.slave, 1)};
   for (int r = 0; r < 3; ++r) {
-    linalg::PRow p{fem::dof_gid(a.slave, r), {}, {}}, pt = p;
+    const GO row = fem::dof_gid(a.slave, r);
+    linalg::PRow p{row, {}, {}}, pt{row, {}, {}};
     for (int j = 0; j < 9; ++j)
       for (std::size_t l = 0; l < mq[j].cols.size(); ++l) {
         p.cols.push_back(mq[j].cols[l]);

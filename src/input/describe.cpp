@@ -217,7 +217,7 @@ std::string allowed_text(const ParameterEntry& valid) {
 std::string allowed_markdown(const ParameterEntry& valid) {
   if (auto s = valid_strings(valid)) return join_choices(*s, true);
   if (type_name(valid.getAny(false)) == "bool") return "`true`, `false`";
-  const std::string c = constraint(valid);
+  std::string c = constraint(valid);
   if (auto n = required_size(valid))
     return std::to_string(*n) + " numbers" + (c.empty() ? "" : ", " + c);
   if (c.empty())

@@ -13,7 +13,6 @@
 namespace emc::input {
 namespace {
 
-using detail::Problem;
 using detail::Section;
 using Teuchos::ParameterList;
 
@@ -145,7 +144,7 @@ std::string contact_body(const ParameterList& bodies, const ParameterList& pair,
                          const std::string& file) {
   const std::string& ref = pair.get<std::string>(role);
   const auto slash = ref.find('/');
-  const std::string body = ref.substr(0, slash);
+  std::string body = ref.substr(0, slash);
   const std::string allowed =
       "a body name or body/surface (a named surface of that body); bodies: " +
       detail::entry_names(bodies);
