@@ -91,14 +91,16 @@ static void BM_ContactGridBuild(benchmark::State& state) {
   const BumpySurface s(static_cast<int>(state.range(0)));
   const auto facets = to_view(s.facets.front().data(), s.facets.size(), "facets");
   const auto x = to_view(s.x.data(), s.x.size() / 3, "x");
-  std::size_t cells = 0, entries = 0;
+  std::size_t cells = 0, entries = 0, reach = 0;
   for (auto _ : state) {
     emc::contact::FacetGrid grid(facets, x, s.margin);
     cells = grid.num_cells();
-    entries = grid.cell_entries().extent(0);
+    entries = grid.box_lists().entries;
+    reach = grid.reach_lists().entries;
   }
   state.counters["cells"] = static_cast<double>(cells);
   state.counters["entries"] = static_cast<double>(entries);
+  state.counters["reach_entries"] = static_cast<double>(reach);
   state.counters["facets"] = static_cast<double>(s.facets.size());
   state.counters["facets_per_s"] =
       benchmark::Counter(double(state.iterations()) * s.facets.size(), benchmark::Counter::kIsRate);
