@@ -6,8 +6,8 @@
 //   BM_ContactQueries         100k random-order queries, one locate() each (/32: 2048 facets,
 //                             all in cache: the cost of the computation alone)
 //   BM_ContactQueriesOrdered  the same in spatial order (as slave nodes numbered along a surface)
-//   BM_ContactQueriesBatch    random order through locate_all (host vectors, Morton sort included)
-//   BM_ContactLocateAll       random order through locate_all on Views (Morton sort included)
+//   BM_ContactQueriesBatch    random order through locate_all (host vectors, sort by cell included)
+//   BM_ContactLocateAll       random order through locate_all on Views (sort by cell included)
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
@@ -144,8 +144,8 @@ static void BM_ContactQueriesOrdered(benchmark::State& state) {
 }
 BENCHMARK(BM_ContactQueriesOrdered)->Arg(224)->Unit(benchmark::kMillisecond);
 
-// The random-order queries through the batch query from host vectors, which visits them in
-// the Morton order of their cells (its parallel sort included).
+// The random-order queries through the batch query from host vectors, which visits them cell
+// by cell (its parallel sort included).
 static void BM_ContactQueriesBatch(benchmark::State& state) {
   const BumpySurface s(static_cast<int>(state.range(0)));
   const auto& [facets, x, q, margin] = s;

@@ -9,7 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <impl/Kokkos_BitOps.hpp>
+#include <impl/Kokkos_BitOps.hpp>  // Kokkos::Impl::bit_scan_forward, on host and device
 #include <vector>
 
 #include "emcontact/types.hpp"
@@ -146,7 +146,7 @@ class FacetGrid {
   }
 
   /// locate(y_k) for every point: hits(k), the same bits, in a labelled parallel_for over
-  /// the points visited in the Morton order of their grid cells (a parallel bin sort), so that
+  /// the points visited cell by cell (a parallel bin sort, a bin per cell), so that
   /// consecutive queries read the same cell lists and facet records, as tree searches sort
   /// their queries (ArborX). For many queries in no particular order.
   void locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) const;
