@@ -37,8 +37,8 @@ for b in d['benchmarks']:
     notes = {'BM_ContactSearch': 'grid rebuilt for every 100k random queries', 'BM_ContactQueries': 'random order',
              'BM_ContactGridBuild': 'parallel build from Views',
              'BM_ContactQueriesOrdered': 'queries in spatial order',
-             'BM_ContactQueriesBatch': 'random order, batch query in the Morton order of the cells, sort included',
-             'BM_ContactLocateAll': 'random order, parallel locate_all on Views, Morton sort included'}
+             'BM_ContactQueriesBatch': 'random order, batch query cell by cell, sort included',
+             'BM_ContactLocateAll': 'random order, parallel locate_all on Views, sort by cell included'}
     extra = ' (%d tets)' % b['tets'] if 'tets' in b else (
         ' (%d facets, %s)' % (b['facets'], notes.get(name.split('/')[0], '')) if 'facets' in b else '')
     rows.append('| %s%s | %.3g %s | %.3gM %s | %s |' % (name, extra, b['real_time'], b['time_unit'], rate / 1e6, unit,

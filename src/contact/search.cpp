@@ -108,9 +108,54 @@ Bounds bounds(FacetGrid::Boxes box, double margin) {
   return b;
 }
 
-/// Calls fn(c) for every cell that facet f's grown box overlaps.
+/// Per facet, its reach box (docs/THEORY.md §2.5): a box holding every point y of its grown box
+/// whose CPP c may be valid (inside the facet up to the tolerance), so that only the facets
+/// whose reach box holds y need the float test and the exact CPP when no facet is current.
+/// With y = c + g n (n the unit normal) and k the axis of the largest |n_k|,
+/// |g n_k| = |y_k - c_k| <= e_k + margin (e the facet's extents: y_k in the grown box, c_k in
+/// the facet's box), so that along every axis y_i lies within |n_i / n_k| (e_k + margin) of the
+/// facet's box. A slack of 1e-6 of the facet's size covers the round-off of n and the
+/// tolerance on xi (1e-9); the box is clipped to the grown box, in which it then lies. A
+/// degenerate facet (never valid) gets an empty box (lo > hi), one whose float test is not
+/// trusted (Prism a = 0: slivers) its grown box.
+void fill_reach(FacetGrid::Records rec, FacetGrid::Boxes box,
+                Kokkos::View<const Prism*, ExecSpace> prism, double margin,
+                FacetGrid::Boxes reach) {
+  using G = FacetGrid;
+  using Kokkos::Experimental::fabs;
+  Kokkos::parallel_for(
+      "emcontact::contact::grid_reach", Policy(0, rec.extent(0)), KOKKOS_LAMBDA(const int f) {
+        if (!(rec(f, G::DET) > 0)) {
+          for (int i = 0; i < 3; ++i) {
+            reach(f, i) = 1;
+            reach(f, 3 + i) = -1;
+          }
+          return;
+        }
+        const bool trusted = prism(f).c1 != -0.5f || prism(f).a1[0] != 0 || prism(f).a1[1] != 0 ||
+                             prism(f).a1[2] != 0;
+        int k = 0;
+        double size = 0;
+        for (int i = 0; i < 3; ++i) {
+          if (fabs(rec(f, G::NRM + i)) > fabs(rec(f, G::NRM + k))) k = i;
+          const double e = box(f, 3 + i) - box(f, i);
+          size = e > size ? e : size;
+        }
+        const double nk = fabs(rec(f, G::NRM + k));
+        const double ek = box(f, 3 + k) - box(f, k) - 2 * margin;
+        for (int i = 0; i < 3; ++i) {
+          const double r = fabs(rec(f, G::NRM + i)) / nk * (ek + margin) + 1e-6 * size;
+          const double lo = box(f, i) + margin - r, hi = box(f, 3 + i) - margin + r;
+          reach(f, i) = !trusted || lo < box(f, i) ? box(f, i) : lo;
+          reach(f, 3 + i) = !trusted || hi > box(f, 3 + i) ? box(f, 3 + i) : hi;
+        }
+      });
+}
+
+/// Calls fn(c) for every cell that box f overlaps (none if the box is empty).
 template <class F>
 KOKKOS_INLINE_FUNCTION void for_each_cell(const GridShape& s, FacetGrid::Boxes box, int f, F&& fn) {
+  if (box(f, 0) > box(f, 3)) return;
   int a[3], b[3];
   for (int i = 0; i < 3; ++i) {
     a[i] = s.clamp_index(box(f, i), i);
@@ -121,62 +166,70 @@ KOKKOS_INLINE_FUNCTION void for_each_cell(const GridShape& s, FacetGrid::Boxes b
       for (int i = a[0]; i <= b[0]; ++i) fn((k * s.dims[1] + j) * s.dims[0] + i);
 }
 
-/// How many facets every cell holds, in start(c + 1).
-void count_cells(const GridShape& s, FacetGrid::Boxes box, Kokkos::View<int*, ExecSpace> start) {
+/// The cell lists of the boxes: every cell's facets in increasing id order, in any order with
+/// atomics, then sorted (the lists are short), so that the order of the candidates, hence
+/// ties, never depends on the threads; then their quantized boxes, lane by lane.
+CellLists cell_lists(const GridShape& s, FacetGrid::Boxes box) {
+  constexpr int W = CellBlock::W;
+  const int cells = static_cast<int>(s.num_cells());
+  Kokkos::View<int*, ExecSpace> count("emc::grid_count", cells);
   Kokkos::parallel_for(
       "emcontact::contact::grid_count", Policy(0, box.extent(0)), KOKKOS_LAMBDA(const int f) {
-        for_each_cell(s, box, f, [&](int c) { Kokkos::atomic_increment(&start(c + 1)); });
+        for_each_cell(s, box, f, [&](int c) { Kokkos::atomic_increment(&count(c)); });
       });
-}
-
-/// start(c) = the sum of the counts of the cells before c; returns the total.
-int scan_cells(Kokkos::View<int*, ExecSpace> start) {
-  int total = 0;
+  CellLists l;
+  l.start = Kokkos::View<int*, ExecSpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::grid_start"), cells + 1);
+  const auto start = l.start;
+  int blocks = 0;  // start(c): the blocks of the cells before c
   Kokkos::parallel_scan(
-      "emcontact::contact::grid_scan", Policy(0, start.extent(0)),
+      "emcontact::contact::grid_scan", Policy(0, cells),
       KOKKOS_LAMBDA(const int c, int& sum, const bool final) {
-        sum += start(c);
         if (final) start(c) = sum;
+        sum += (count(c) + W - 1) / W;
+        if (final && c == cells - 1) start(cells) = sum;
       },
-      total);
-  return total;
-}
-
-/// Every cell's facets in increasing id order: in any order with atomics, then sorted (the
-/// lists are short); the order of the candidates, hence ties, never depends on the threads.
-void fill_cells(const GridShape& s, FacetGrid::Boxes box,
-                Kokkos::View<const Prism*, ExecSpace> prism,
-                Kokkos::View<const int*, ExecSpace> start,
-                Kokkos::View<CellEntry*, ExecSpace> entries) {
-  Kokkos::View<int*, ExecSpace> next("emc::grid_next", start.extent(0) - 1);
+      blocks);
+  l.blocks = Kokkos::View<CellBlock*, ExecSpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::grid_blocks"), blocks);
+  const auto out = l.blocks;
+  Kokkos::View<int*, ExecSpace> next("emc::grid_next", cells);
   Kokkos::View<int*, ExecSpace> ids(Kokkos::ViewAllocateWithoutInitializing("emc::grid_ids"),
-                                    entries.extent(0));
+                                    W * std::size_t(blocks));
   Kokkos::parallel_for(
       "emcontact::contact::grid_fill", Policy(0, box.extent(0)), KOKKOS_LAMBDA(const int f) {
-        for_each_cell(s, box, f,
-                      [&](int c) { ids(start(c) + Kokkos::atomic_fetch_add(&next(c), 1)) = f; });
+        for_each_cell(s, box, f, [&](int c) {
+          ids(W * start(c) + Kokkos::atomic_fetch_add(&next(c), 1)) = f;
+        });
       });
-  Kokkos::parallel_for(
-      "emcontact::contact::grid_sort", Policy(0, next.extent(0)), KOKKOS_LAMBDA(const int c) {
-        for (int k = start(c) + 1; k < start(c + 1); ++k) {  // insertion sort
+  int entries = 0;
+  Kokkos::parallel_reduce(
+      "emcontact::contact::grid_sort", Policy(0, cells),
+      KOKKOS_LAMBDA(const int c, int& sum) {
+        const int first = W * start(c), last = first + count(c);
+        sum += count(c);
+        for (int k = first + 1; k < last; ++k) {  // insertion sort
           const int f = ids(k);
           int j = k;
-          for (; j > start(c) && ids(j - 1) > f; --j) ids(j) = ids(j - 1);
+          for (; j > first && ids(j - 1) > f; --j) ids(j) = ids(j - 1);
           ids(j) = f;
         }
         const int d[3] = {c % s.dims[0], c / s.dims[0] % s.dims[1], c / s.dims[0] / s.dims[1]};
-        for (int k = start(c); k < start(c + 1); ++k) {  // the entries, written in order
-          const int f = ids(k);
-          CellEntry e;
-          e.facet = f;
-          e.prism = prism(f);
-          for (int i = 0; i < 3; ++i) {
-            e.lo[i] = s.quantum(box(f, i), i, d[i]);
-            e.hi[i] = s.quantum(box(f, 3 + i), i, d[i]);
+        for (int b = start(c); b < start(c + 1); ++b) {  // the blocks, lane by lane
+          CellBlock& e = out(b);
+          for (int j = 0; j < W; ++j) {
+            const int k = W * b + j, f = k < last ? ids(k) : -1;
+            e.facet[j] = f;
+            for (int i = 0; i < 3; ++i) {
+              e.lo[i][j] = f < 0 ? short(0x7FFF) : short(s.quantum(box(f, i), i, d[i]));
+              e.hi[i][j] = f < 0 ? short(0) : short(s.quantum(box(f, 3 + i), i, d[i]));
+            }
           }
-          entries(k) = e;
         }
-      });
+      },
+      entries);
+  l.entries = static_cast<std::size_t>(entries);
+  return l;
 }
 
 }  // namespace
@@ -192,27 +245,27 @@ FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
   double h = nf ? std::max(b.ext / (3.0 * nf), 1e-12) + 2 * margin : 1.0;
   for (int i = 0; i < 3; ++i) h = std::max(h, (b.hi[i] - b.lo[i]) / 128.0);
   tie_ = 1e-14 * h;
-  // cells twice that: a third of the entries of cells of size h, a 3x faster build, and the
-  // same query speed (perf/README.md, BM_ContactGridBuild and BM_ContactQueries)
-  h *= 2;
+  // cells 1.5 times that: with the reach lists, measured 10-15% more queries per second in
+  // locate_all than cells of twice that (fewer blocks per query) for a 10% slower build; cells
+  // of h gain little more, lose in random order one by one and build 1.5-2 times slower
+  // (BM_ContactLocateAll, BM_ContactQueries and BM_ContactGridBuild)
+  h *= 1.5;
   shape_.h = h;
   shape_.inv_h = 1 / h;
   shape_.q_scale = 16384 / h;
   for (int i = 0; i < 3; ++i) {
     shape_.lo[i] = b.lo[i];
-    // + 1: the cell of the highest box bound lies inside the grid (at most 65 per direction)
+    // + 1: the cell of the highest box bound lies inside the grid (at most 86 per direction)
     shape_.dims[i] = nf ? int(std::floor((b.hi[i] - b.lo[i]) * shape_.inv_h)) + 1 : 1;
   }
   const GridShape s = shape_;
-  Kokkos::View<Prism*, ExecSpace> prism(Kokkos::ViewAllocateWithoutInitializing("emc::grid_prisms"),
-                                        nf);
-  fill_prisms(s, rec_, prism);
-  cell_start_ = Kokkos::View<int*, ExecSpace>("emc::grid_start", s.num_cells() + 1);
-  count_cells(s, box_, cell_start_);
-  const int total = scan_cells(cell_start_);
-  entries_ = Kokkos::View<CellEntry*, ExecSpace>(
-      Kokkos::ViewAllocateWithoutInitializing("emc::grid_entries"), total);
-  fill_cells(s, box_, prism, cell_start_, entries_);
+  prism_ = Kokkos::View<Prism*, ExecSpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::grid_prisms"), nf);
+  fill_prisms(s, rec_, prism_);
+  Boxes reach(Kokkos::ViewAllocateWithoutInitializing("emc::grid_reach"), nf);
+  fill_reach(rec_, box_, prism_, margin, reach);
+  boxes_ = cell_lists(s, box_);
+  reach_ = cell_lists(s, reach);
 }
 
 FacetGrid::FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
@@ -235,44 +288,41 @@ namespace emc::contact {
 
 namespace {
 
-/// Bit b of v (< 2^10: at most 65 cells per direction) to bit 3b.
-KOKKOS_INLINE_FUNCTION unsigned spread(unsigned v) {
-  unsigned r = 0;
-  for (int b = 0; b < 10; ++b) r |= ((v >> b) & 1u) << (3 * b);
-  return r;
-}
-
-/// The Morton code of the cell of every point, points outside the grid after all cells.
-Kokkos::View<int*, ExecSpace> morton_keys(const GridShape& s, FacetGrid::PointsView y,
-                                          int outside) {
+/// Every point's key: its cell's rank in the visiting order of the cells, points outside the
+/// grid last. The cells are visited along the axis with the fewest cells first, then the next
+/// (so that, for a surface, the cells of a column across it come together), like the rows of
+/// an array.
+Kokkos::View<int*, ExecSpace> cell_keys(const GridShape& s, FacetGrid::PointsView y) {
   Kokkos::View<int*, ExecSpace> key(Kokkos::ViewAllocateWithoutInitializing("emc::grid_keys"),
                                     y.extent(0));
+  int a[3] = {0, 1, 2};  // the axes, fewest cells first (ties: lower axis first)
+  std::stable_sort(a, a + 3, [&s](int i, int j) { return s.dims[i] < s.dims[j]; });
+  const int a0 = a[0], a1 = a[1], a2 = a[2], outside = static_cast<int>(s.num_cells());
   Kokkos::parallel_for(
       "emcontact::contact::grid_query_keys", Policy(0, y.extent(0)), KOKKOS_LAMBDA(const int k) {
         const double p[3] = {y(k, 0), y(k, 1), y(k, 2)};
         int d[3];
-        key(k) = s.cell_of(p, d) < 0 ? outside
-                                     : int(spread(d[0]) | spread(d[1]) << 1 | spread(d[2]) << 2);
+        key(k) = s.cell_of(p, d) < 0 ? outside : (d[a2] * s.dims[a1] + d[a1]) * s.dims[a0] + d[a0];
       });
   return key;
 }
 
 }  // namespace
 
-// docs/THEORY.md §2.5 for every point (locate), visited in an order that reuses the cache.
+// docs/THEORY.md §2.5 for every point (locate), visited cell by cell so that consecutive
+// queries read the same cell lists and facet records (as tree searches sort their queries).
 void FacetGrid::locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) const {
   const int n = static_cast<int>(y.extent(0));
-  const GridShape& s = shape_;
-  const int outside =
-      int(spread(s.dims[0] - 1) | spread(s.dims[1] - 1) << 1 | spread(s.dims[2] - 1) << 2) + 1;
-  const auto key = morton_keys(s, y, outside);
-  // about 4 points per bin: the order inside a bin does not matter
+  const int cells = static_cast<int>(shape_.num_cells());
+  const auto key = cell_keys(shape_, y);
+  // a bin per cell (and one for the points outside): a cell's points together, in any order
   using Op = Kokkos::BinOp1D<Kokkos::View<int*, ExecSpace>>;
-  Kokkos::BinSort<Kokkos::View<int*, ExecSpace>, Op> sort(key, Op(std::max(1, n / 4), 0, outside));
+  Kokkos::BinSort<Kokkos::View<int*, ExecSpace>, Op> sort(key, Op(cells + 1, 0, cells));
   sort.create_permute_vector();
   const auto order = sort.get_permute_vector();
   const FacetGrid grid = *this;  // by value: never capture `this` in a device lambda
-  // the points in that order first: independent loads, not the head of each query's chain
+  // the points in that order first, the hits in order, then in place: sequential loads and
+  // stores in the queries (measured faster than reading and writing through order there)
   Kokkos::View<double* [3], ExecSpace> ys(Kokkos::ViewAllocateWithoutInitializing("emc::grid_ys"),
                                           n);
   Kokkos::View<Hit*, ExecSpace> hs(Kokkos::ViewAllocateWithoutInitializing("emc::grid_hs"), n);

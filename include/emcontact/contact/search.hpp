@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <impl/Kokkos_BitOps.hpp>  // Kokkos::Impl::bit_scan_forward, on host and device
 #include <vector>
 
 #include "emcontact/types.hpp"
@@ -31,15 +32,23 @@ struct Prism {
   float a1[3], a2[3], c1, c2;
 };
 
-/// One entry of a cell's list (48 bytes): the facet id, its grown box quantized in the cell by
-/// GridShape::quantum, a monotone map (a point's quantum below lo or above hi is outside the
-/// exact box, strictly between them inside; only equal quanta need the exact box), and its
-/// Prism: a query reads its cell's list, then only the records of the facets left (measured
-/// faster than a separate Prism per facet: one dependent memory access less).
-struct CellEntry {
-  unsigned short lo[3], hi[3];  // read as three 16-bit lanes of a 64-bit word (little endian)
-  int facet;
-  Prism prism;
+/// Eight entries of a cell's list (128 bytes, two cache lines), lane by lane: facet ids and
+/// boxes quantized in the cell by GridShape::quantum, a monotone map (a point's quantum below
+/// lo or above hi is outside the box, strictly between them inside; only equal quanta need the
+/// exact box). A query tests its quanta against the eight boxes at once, in a loop the compiler
+/// vectorizes. Unused lanes: lo = 0x7FFF, hi = 0 (no quantum lies between), facet -1.
+struct CellBlock {
+  enum { W = 8 };
+  short lo[3][W], hi[3][W];  // quanta < 2^15
+  int facet[W];
+};
+
+/// Cell lists (CSR): cell c holds blocks start(c) .. start(c + 1) - 1, its facets in
+/// increasing id order, lane by lane, the unused lanes last.
+struct CellLists {
+  Kokkos::View<int*, ExecSpace> start;
+  Kokkos::View<CellBlock*, ExecSpace> blocks;
+  std::size_t entries = 0;  ///< the used lanes
 };
 
 /// The grid's geometry: origin, cell size and cells per direction.
@@ -137,7 +146,7 @@ class FacetGrid {
   }
 
   /// locate(y_k) for every point: hits(k), the same bits, in a labelled parallel_for over
-  /// the points visited in the Morton order of their grid cells (a parallel bin sort), so that
+  /// the points visited cell by cell (a parallel bin sort, a bin per cell), so that
   /// consecutive queries read the same cell lists and facet records, as tree searches sort
   /// their queries (ArborX). For many queries in no particular order.
   void locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) const;
@@ -176,15 +185,18 @@ class FacetGrid {
   std::size_t num_cells() const { return shape_.num_cells(); }
   KOKKOS_INLINE_FUNCTION int num_facets() const { return static_cast<int>(rec_.extent(0)); }
   const GridShape& shape() const { return shape_; }
-  /// The cell lists (CSR): cell c holds entries cell_start()(c) .. cell_start()(c + 1) - 1.
-  Kokkos::View<const int*, ExecSpace> cell_start() const { return cell_start_; }
-  Kokkos::View<const CellEntry*, ExecSpace> cell_entries() const { return entries_; }
+  /// The cells' lists of the facets whose grown box overlaps them, quantized grown boxes.
+  const CellLists& box_lists() const { return boxes_; }
+  /// The cells' lists of the facets whose reach box overlaps them, quantized reach boxes: the
+  /// box of the points of the grown box whose CPP may lie inside the facet (docs/THEORY.md
+  /// §2.5), which a locate() without a current facet scans.
+  const CellLists& reach_lists() const { return reach_; }
 
  private:
   GridShape shape_;
   double tie_ = 0;  ///< |g_N| closer than this are ties (1e-14 of the mean facet size, §2)
-  Kokkos::View<int*, ExecSpace> cell_start_;
-  Kokkos::View<CellEntry*, ExecSpace> entries_;
+  CellLists boxes_, reach_;
+  Kokkos::View<Prism*, ExecSpace> prism_;
   Records rec_;
   Boxes box_;
 
@@ -201,12 +213,13 @@ class FacetGrid {
   /// false only when the float estimate of kernels::facet_outside, with a bound of its
   /// round-off (below 8 2^-24 of the sum of the magnitudes summed), is beyond tol.
   KOKKOS_INLINE_FUNCTION static bool maybe_inside(const Prism& p, const float yf[3], double tol) {
+    using Kokkos::Experimental::fabs;  // no branch (a conditional negation may compile to one)
     float xi = -p.c1, eta = -p.c2;
-    float size = 1 + (p.c1 < 0 ? -p.c1 : p.c1) + (p.c2 < 0 ? -p.c2 : p.c2);
+    float size = 1 + fabs(p.c1) + fabs(p.c2);
     for (int i = 0; i < 3; ++i) {  // yf >= 0 inside the grid
       xi += p.a1[i] * yf[i];
       eta += p.a2[i] * yf[i];
-      size += ((p.a1[i] < 0 ? -p.a1[i] : p.a1[i]) + (p.a2[i] < 0 ? -p.a2[i] : p.a2[i])) * yf[i];
+      size += (fabs(p.a1[i]) + fabs(p.a2[i])) * yf[i];
     }
     float out = xi + eta - 1;  // -min(1 - xi - eta, xi, eta)
     out = out > -xi ? out : -xi;
@@ -222,54 +235,69 @@ class FacetGrid {
 #endif
   }
 
-  /// Three 16-bit lanes from memory (the fourth cleared).
-  KOKKOS_INLINE_FUNCTION static std::uint64_t lanes(const void* p) {
-    std::uint64_t v;
-    std::memcpy(&v, p, sizeof v);
-    return v & 0x0000FFFFFFFFFFFFull;
-  }
-  /// Whether the grown box of entry e holds y (q: the lanes of y's quanta in e's cell). Lane by
-  /// lane with guard bits (quanta < 2^15, no borrow between lanes): the guard of (q | G) - lo
-  /// stays set iff q >= lo, of (hi | G) - q iff hi >= q; one less for strictly.
-  KOKKOS_INLINE_FUNCTION bool in_box(const CellEntry& e, std::uint64_t q, const double y[3]) const {
-    const std::uint64_t G = 0x0000800080008000ull, one = 0x0000000100010001ull;
-    const std::uint64_t a = (q | G) - lanes(e.lo), b = (lanes(e.hi) | G) - q;
-    if ((a & b & G) != G) return false;                 // surely outside
-    if (((a - one) & (b - one) & G) == G) return true;  // surely inside
-    const int f = e.facet;
+  /// Whether the exact grown box of facet f holds y.
+  KOKKOS_INLINE_FUNCTION bool in_box(int f, const double y[3]) const {
     return !(y[0] < box_(f, 0) || y[0] > box_(f, 3) || y[1] < box_(f, 1) || y[1] > box_(f, 4) ||
              y[2] < box_(f, 2) || y[2] > box_(f, 5));
   }
+  /// The lanes of block b whose quantized box holds the quanta q (bit j for lane j). With quanta
+  /// below 2^15, q - lo and hi - q fit in 16 bits, whose sign bits, or-ed over the axes, tell a
+  /// lane outside: a loop of 16-bit operations over the lanes, which the compiler vectorizes;
+  /// the eight results (bytes 0 or 1) are gathered into the bits of one byte by a product.
+  KOKKOS_INLINE_FUNCTION static unsigned lanes_holding(const CellBlock& b, const short q[3]) {
+    const short q0 = q[0], q1 = q[1], q2 = q[2];
+    unsigned char in[CellBlock::W];
+    for (int j = 0; j < CellBlock::W; ++j) {
+      const short out =
+          static_cast<short>((q0 - b.lo[0][j]) | (b.hi[0][j] - q0) | (q1 - b.lo[1][j]) |
+                             (b.hi[1][j] - q1) | (q2 - b.lo[2][j]) | (b.hi[2][j] - q2));
+      in[j] = out >= 0;
+    }
+    static_assert(CellBlock::W == sizeof(std::uint64_t), "one byte per lane in a word");
+    std::uint64_t w;
+    std::memcpy(&w, in, sizeof w);
+    return static_cast<unsigned>((w * 0x0102040810204080ull) >> 56);  // byte j to bit j
+  }
+  /// Whether the quanta q lie strictly inside lane j's quantized box (then its box holds y).
+  KOKKOS_INLINE_FUNCTION static bool surely_holds(const CellBlock& b, int j, const short q[3]) {
+    return b.lo[0][j] < q[0] && q[0] < b.hi[0][j] && b.lo[1][j] < q[1] && q[1] < b.hi[1][j] &&
+           b.lo[2][j] < q[2] && q[2] < b.hi[2][j];
+  }
 
   /// Calls fn(f) for every facet whose grown box holds y (all) or, if not all, only for
-  /// those that are maybe_inside, in increasing id order. The cell's list is scanned first
-  /// and the records of the facets found are prefetched together (batches of at most 32), so
-  /// that their memory latencies overlap.
+  /// those that are maybe_inside, in increasing id order. Not all scans the reach lists, all
+  /// the box lists (a reach box lies in its grown box: strictly inside the first, y is inside
+  /// the second; on the boundary of the first, the second decides). The records of the facets
+  /// found are prefetched together (batches of at most 32), so that their latencies overlap.
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_box(const double y[3], bool all, F&& fn) const {
     int d[3];
     const int c = shape_.cell_of(y, d);
     if (c < 0) return;
-    unsigned short qs[4] = {0, 0, 0, 0};
+    short q[3];
     float yf[3];
     for (int i = 0; i < 3; ++i) {
-      qs[i] = shape_.quantum(y[i], i, d[i]);
+      q[i] = static_cast<short>(shape_.quantum(y[i], i, d[i]));
       yf[i] = static_cast<float>(y[i] - shape_.lo[i]);
     }
-    const std::uint64_t q = lanes(qs);
-    const int end = cell_start_(c + 1);
+    const CellLists& lists = all ? boxes_ : reach_;
+    const int end = lists.start(c + 1);
     int found[32], n = 0;
-    for (int k = cell_start_(c); k < end; ++k) {
-      const CellEntry& e = entries_(k);
-      if (!in_box(e, q, y)) continue;
-      if (!all && !maybe_inside(e.prism, yf, 1e-9)) continue;
-      prefetch(&rec_(e.facet, 0));
-      prefetch(&rec_(e.facet, 8));
-      prefetch(&rec_(e.facet, 16));
-      found[n++] = e.facet;
-      if (n == 32) {
-        visit(found, n, fn);
-        n = 0;
+    for (int k = lists.start(c); k < end; ++k) {
+      const CellBlock& b = lists.blocks(k);
+      for (unsigned m = lanes_holding(b, q); m; m &= m - 1) {
+        const int j = Kokkos::Impl::bit_scan_forward(m);
+        const int f = b.facet[j];
+        if (!surely_holds(b, j, q) && !in_box(f, y)) continue;
+        if (!all && !maybe_inside(prism_(f), yf, 1e-9)) continue;
+        prefetch(&rec_(f, 0));
+        prefetch(&rec_(f, 8));
+        prefetch(&rec_(f, 16));
+        found[n++] = f;
+        if (n == 32) {
+          visit(found, n, fn);
+          n = 0;
+        }
       }
     }
     visit(found, n, fn);

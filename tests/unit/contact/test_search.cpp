@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 
 #include "emcontact/contact/search.hpp"
@@ -344,8 +345,9 @@ TEST(FacetGrid, BatchOnViewsMatchesSingleQueries) {
 }
 
 // The parallel build is deterministic: from Views on local node indices or from host
-// containers, the same cells in the same order; every list sorted by facet id; every facet in
-// exactly the cells its box overlaps, with its box quantized in the cell.
+// containers, the same cells in the same order; every list sorted by facet id, its unused lanes
+// last; every facet in exactly the cells its box overlaps, with its box quantized in the cell;
+// every facet's reach box (the reach lists) in its grown box and so in fewer cells.
 TEST(FacetGrid, BuildIsDeterministicAndListsSorted) {
   std::vector<std::array<int, 3>> facets, lf;
   std::vector<double> x, lx;
@@ -354,51 +356,163 @@ TEST(FacetGrid, BuildIsDeterministicAndListsSorted) {
   const emc::contact::FacetGrid a(facets, x, 0.05);
   const emc::contact::FacetGrid b(to_view(lf.front().data(), lf.size()),
                                   to_view(lx.data(), lx.size() / 3), 0.05);
-  const auto sa = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a.cell_start());
-  const auto sb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.cell_start());
-  const auto ea = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a.cell_entries());
-  const auto eb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.cell_entries());
   ASSERT_EQ(a.num_cells(), b.num_cells());
-  ASSERT_EQ(sa.extent(0), a.num_cells() + 1);
-  ASSERT_EQ(ea.extent(0), eb.extent(0));
   EXPECT_EQ(a.tie(), b.tie());
   const auto& g = a.shape();
-  std::vector<int> cells_of(facets.size(), 0);
-  for (std::size_t c = 0; c < a.num_cells(); ++c) {
-    ASSERT_EQ(sa(c), sb(c));
-    const int d[3] = {int(c % g.dims[0]), int(c / g.dims[0] % g.dims[1]),
-                      int(c / g.dims[0] / g.dims[1])};
-    for (int e = sa(c); e < sa(c + 1); ++e) {
-      ASSERT_EQ(ea(e).facet, eb(e).facet);
-      if (e > sa(c)) EXPECT_LT(ea(e - 1).facet, ea(e).facet) << "cell " << c;
-      ++cells_of[ea(e).facet];
-      double xm[3][3];
-      for (int p = 0; p < 3; ++p)
-        for (int i = 0; i < 3; ++i) xm[p][i] = x[3 * facets[ea(e).facet][p] + i];
-      for (int i = 0; i < 3; ++i) {
-        const double lo = std::min({xm[0][i], xm[1][i], xm[2][i]}) - 0.05;
-        const double hi = std::max({xm[0][i], xm[1][i], xm[2][i]}) + 0.05;
-        EXPECT_EQ(ea(e).lo[i], g.quantum(lo, i, d[i]));
-        EXPECT_EQ(ea(e).hi[i], g.quantum(hi, i, d[i]));
-        EXPECT_EQ(ea(e).lo[i], eb(e).lo[i]);
-        EXPECT_EQ(ea(e).hi[i], eb(e).hi[i]);
+  const int W = emc::contact::CellBlock::W;
+  // per facet: its cells, and its quantized box in each (cell -> lo, hi)
+  using Quanta = std::map<std::size_t, std::array<int, 6>>;
+  auto lists = [&](const emc::contact::CellLists& la, const emc::contact::CellLists& lb) {
+    const auto sa = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), la.start);
+    const auto sb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lb.start);
+    const auto ea = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), la.blocks);
+    const auto eb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lb.blocks);
+    EXPECT_EQ(sa.extent(0), a.num_cells() + 1);
+    EXPECT_EQ(ea.extent(0), eb.extent(0));
+    EXPECT_EQ(la.entries, lb.entries);
+    std::vector<Quanta> of(facets.size());
+    std::size_t entries = 0;
+    for (std::size_t c = 0; c < a.num_cells(); ++c) {
+      EXPECT_EQ(sa(c), sb(c));
+      int last = -1;
+      for (int e = W * sa(c); e < W * sa(c + 1); ++e) {
+        const auto& ba = ea(e / W);
+        const auto& bb = eb(e / W);
+        const int j = e % W, f = ba.facet[j];
+        EXPECT_EQ(f, bb.facet[j]);
+        for (int i = 0; i < 3; ++i) {
+          EXPECT_EQ(ba.lo[i][j], bb.lo[i][j]);
+          EXPECT_EQ(ba.hi[i][j], bb.hi[i][j]);
+        }
+        if (f < 0) {  // unused: last, in the cell's last block only, never holding a point
+          EXPECT_GE(e, W * (sa(c + 1) - 1)) << "cell " << c;
+          last = int(facets.size());
+          for (int i = 0; i < 3; ++i) {
+            EXPECT_EQ(ba.lo[i][j], 0x7FFF);
+            EXPECT_EQ(ba.hi[i][j], 0);
+          }
+          continue;
+        }
+        EXPECT_LT(last, f) << "cell " << c;
+        last = f;
+        ++entries;
+        of[f][c] = {ba.lo[0][j], ba.lo[1][j], ba.lo[2][j], ba.hi[0][j], ba.hi[1][j], ba.hi[2][j]};
       }
+      if (sa(c + 1) > sa(c)) EXPECT_NE(ea(sa(c)).facet[0], -1) << "empty block, cell " << c;
     }
-  }
+    EXPECT_EQ(entries, la.entries);
+    return of;
+  };
+  const auto boxes = lists(a.box_lists(), b.box_lists());
+  const auto reach = lists(a.reach_lists(), b.reach_lists());
+  std::size_t fewer = 0;
   for (std::size_t f = 0; f < facets.size(); ++f) {  // the cells its grown box overlaps
+    double lo[3], hi[3];
     int n = 1;
     for (int i = 0; i < 3; ++i) {
-      double lo = 1e300, hi = -1e300;
+      lo[i] = 1e300;
+      hi[i] = -1e300;
       for (int p = 0; p < 3; ++p) {
-        lo = std::min(lo, x[3 * facets[f][p] + i] - 0.05);
-        hi = std::max(hi, x[3 * facets[f][p] + i] + 0.05);
+        lo[i] = std::min(lo[i], x[3 * facets[f][p] + i]);
+        hi[i] = std::max(hi[i], x[3 * facets[f][p] + i]);
       }
-      n *= g.clamp_index(hi, i) - g.clamp_index(lo, i) + 1;
+      lo[i] -= 0.05;
+      hi[i] += 0.05;
+      n *= g.clamp_index(hi[i], i) - g.clamp_index(lo[i], i) + 1;
     }
-    EXPECT_EQ(cells_of[f], n) << "facet " << f;
+    EXPECT_EQ(int(boxes[f].size()), n) << "facet " << f;
+    for (const auto& [c, q] : boxes[f]) {
+      const int d[3] = {int(c % g.dims[0]), int(c / g.dims[0] % g.dims[1]),
+                        int(c / g.dims[0] / g.dims[1])};
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(q[i], g.quantum(lo[i], i, d[i]));
+        EXPECT_EQ(q[3 + i], g.quantum(hi[i], i, d[i]));
+      }
+    }
+    EXPECT_LE(reach[f].size(), boxes[f].size());
+    fewer += reach[f].size() < boxes[f].size();
+    for (const auto& [c, q] : reach[f]) {  // within the grown box, in the same cells
+      ASSERT_EQ(boxes[f].count(c), 1u) << "facet " << f << " cell " << c;
+      const auto& qb = boxes[f].at(c);
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_GE(q[i], qb[i]);
+        EXPECT_LE(q[3 + i], qb[3 + i]);
+        EXPECT_LE(q[i], q[3 + i]);
+      }
+    }
   }
+  EXPECT_GT(fewer, facets.size() / 4);  // the reach boxes are smaller
   const auto y = near_points(2000, 13, -0.1, 1.1, 0.08);
   for (int t = 0; t < 2000; ++t) expect_same(a.locate(&y[3 * t]), b.locate(&y[3 * t]), t);
+}
+
+namespace {
+
+/// A sphere of radius r about c, nt x 2nt latitude-longitude quads cut in two (the poles'
+/// triangles repeat a node: degenerate facets): every orientation of the normal.
+void sphere(int nt, double r, const double c[3], std::vector<std::array<int, 3>>& facets,
+            std::vector<double>& x) {
+  const double pi = std::acos(-1.0);
+  const int np = 2 * nt;
+  for (int j = 0; j <= nt; ++j)
+    for (int i = 0; i < np; ++i) {
+      const double th = pi * j / nt, ph = 2 * pi * i / np;
+      x.insert(x.end(), {c[0] + r * std::sin(th) * std::cos(ph),
+                         c[1] + r * std::sin(th) * std::sin(ph), c[2] + r * std::cos(th)});
+    }
+  auto id = [np](int i, int j) { return j * np + i % np; };
+  for (int j = 0; j < nt; ++j)
+    for (int i = 0; i < np; ++i) {
+      facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+}
+
+}  // namespace
+
+// Facets of every orientation (the reach boxes bound the CPP's region along each axis from
+// the normal): without a current facet, the brute-force bits near a sphere, with margins
+// small and large against the facets, at random points and at the facets' nodes (ties); the
+// batch query gives the same bits, also at random points of the whole grid.
+TEST(FacetGrid, AnyOrientationMatchesBruteForce) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x;
+  const double c[3] = {0.5, 0.4, 0.3};
+  sphere(24, 0.5, c, facets, x);
+  std::mt19937 rng(19);
+  std::normal_distribution<double> dn(0, 1);
+  std::uniform_real_distribution<double> du(-0.2, 1.2);
+  for (const double margin : {0.01, 0.06}) {
+    const emc::contact::FacetGrid grid(facets, x, margin);
+    std::vector<double> y;
+    for (int t = 0; t < 3000; ++t) {
+      double p[3];
+      if (t % 5 == 0) {  // a node, moved along its radius: on edges of several facets
+        const int v = static_cast<int>(rng() % (x.size() / 3));
+        const double s = 1 + margin * (t % 3 - 1.0);
+        for (int i = 0; i < 3; ++i) p[i] = c[i] + s * (x[3 * v + i] - c[i]);
+      } else {
+        double u[3] = {dn(rng), dn(rng), dn(rng)};
+        const double nu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        const double rr = 0.5 + 1.2 * margin * (2.0 * (rng() % 1001) / 1000 - 1);
+        for (int i = 0; i < 3; ++i) p[i] = c[i] + rr * u[i] / nu;
+      }
+      y.insert(y.end(), {p[0], p[1], p[2]});
+    }
+    int found = 0;
+    for (int t = 0; t < 3000; ++t) {
+      const auto a = grid.locate(&y[3 * t]);
+      expect_same(a, brute_force(&y[3 * t], facets, x, margin, grid.tie()), t);
+      found += a.facet >= 0;
+    }
+    EXPECT_GT(found, 2000);
+    for (int t = 0; t < 3000; ++t) y.insert(y.end(), {du(rng), du(rng), du(rng)});
+    const int n = static_cast<int>(y.size() / 3);
+    Kokkos::View<emc::contact::Hit*, emc::ExecSpace> hits("test::hits", n);
+    grid.locate_all(to_view(y.data(), n), hits);
+    const auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hits);
+    for (int t = 0; t < n; ++t) expect_same(hh(t), grid.locate(&y[3 * t]), t);
+  }
 }
 
 // Slivers (angles far below the float test's limit) and degenerate facets (collinear or
