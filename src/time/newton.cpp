@@ -124,8 +124,11 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     if (it == 0) r0 = r;
     // docs/THEORY.md §1.6: the tolerance never sits below the round-off of g's terms, nor below
     // what re-projecting the constrained slaves leaves at every iterate
-    double roundoff = hooks_ ? hooks_->residual_roundoff() : 0.0, total = 0;
-    Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 1, &roundoff, &total);
+    double total = 0;  // hooks_ is set on every rank or on none: the reduction is collective
+    if (hooks_) {
+      const double roundoff = hooks_->residual_roundoff();
+      Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 1, &roundoff, &total);
+    }
     const double floor =
         std::max(opt_.atol, std::hypot(100 * eps * scale.norm2(), std::sqrt(total)));
     const double target = std::max(opt_.rtol * r0, floor);
