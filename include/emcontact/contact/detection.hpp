@@ -19,7 +19,8 @@ struct EntryRule {
   double edge = 1e-2;    ///< a facet takes a node whose CPP lies outside it by up to this
                          ///< (barycentric), its xi then clamped to the facet
   double strict = 1e-9;  ///< "inside a facet" without that extension (barycentric)
-  double facing = 0.2;   ///< a facet faces a slave node when n_facet . n_slave < -facing
+  double facing = 0.2;   ///< a facet faces a slave node when n_facet . n_slave < -facing,
+                         ///< and is at its side when |n_facet . n_slave| <= facing
   double round = 0;      ///< |g_N| below this is touching, not penetrating (round-off)
   double dmax = 0;       ///< deeper than this is behind a thin master, not penetrating
 };
@@ -40,15 +41,40 @@ struct Entry {
   double s = 0;           ///< the fraction of the step at which it is crossed
   double outside = 0;     ///< barycentric, of the crossing point
   bool extended = false;  ///< the crossing point lies in the edge extension only
+  bool side = false;      ///< the facet does not face the node (crossed strictly inside)
 
   KOKKOS_INLINE_FUNCTION bool before(const Entry& o) const {
     if (crossing != o.crossing) return crossing;
+    if (side != o.side) return !side;
     if (extended != o.extended) return !extended;
     if (s != o.s) return s < o.s;
     if (outside != o.outside) return outside < o.outside;
     return hit.facet < o.hit.facet;
   }
 };
+
+/// docs/THEORY.md §6.3, nodes entering from beside: a node behind the plane of facet `behind`
+/// (CPP inside it, not crossed) lies outside the master when it lies in front of another facet
+/// that takes it (within rule.edge) and that is nearer, or on whose back the facet `behind`
+/// lies (a convex edge between them: the master is behind both planes there).
+template <class Facets, class X>
+KOKKOS_INLINE_FUNCTION bool outside_master(const FacetGrid& grid1, const Facets& facets,
+                                           const X& x1, const double y1[3], const Hit& behind,
+                                           const EntryRule& rule) {
+  double c[3] = {0, 0, 0};
+  for (int a = 0; a < 3; ++a)
+    for (int i = 0; i < 3; ++i) c[i] += x1(facets(behind.facet, a), i) / 3;
+  bool outside = false;
+  grid1.for_each_candidate(y1, [&](const Hit& h, double out) {
+    if (h.facet == behind.facet || out > rule.edge || h.gap < -rule.round) return;
+    const kernels::FacetMetric m = grid1.metric(h.facet);
+    // the height of `behind`'s centroid over h's plane (through the node's CPP y1 - g n)
+    const double hc =
+        (c[0] - y1[0]) * m.f.n[0] + (c[1] - y1[1]) * m.f.n[1] + (c[2] - y1[2]) * m.f.n[2] + h.gap;
+    if (h.gap < -behind.gap || hc <= rule.round) outside = true;
+  });
+  return outside;
+}
 
 }  // namespace detail
 
@@ -59,9 +85,12 @@ struct Entry {
 /// their plane) within rule.edge, hold it at -dmax < g_N < -round at n+1 and see it approach
 /// (g_N decreasing). A facet crossed over the step (g_N >= -round at t_n) wins over one the node
 /// was already behind; then a facet crossed inside over one crossed in the edge extension only;
-/// then the earliest crossing, the least outside, the lowest id. A facet that takes the node
-/// only through the edge extension is refused when the node lies on another facing facet
-/// (inside it, 0 <= g_N <= edge times its size): the node passes over that facet's edge.
+/// then the earliest crossing, the least outside, the lowest id. A facet at the node's side
+/// (|n_f . ns| <= facing) is a candidate when crossed strictly inside, after the facing ones. A
+/// facet that takes the node only through the edge extension, or a side facet, is refused when
+/// the node lies on another facing facet (inside it, 0 <= g_N <= edge times its size): the node
+/// passes over that facet's edge. A node behind a facet it did not cross is refused when it
+/// lies outside the master (detail::outside_master).
 template <class Facets, class X>
 KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& facets, const X& x0,
                                          const X& x1, int s, const double ns[3],
@@ -71,8 +100,10 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
   bool any = false, covered = false;
   grid1.for_each_candidate(y1, [&](const Hit& h1, double out1) {
     const kernels::FacetMetric m = grid1.metric(h1.facet);
-    if (!(detail::dot3(m.f.n, ns) < -rule.facing) || out1 > rule.edge) return;
-    if (out1 <= rule.strict && h1.gap >= -rule.round &&
+    const double facing = detail::dot3(m.f.n, ns);
+    if (!(facing < rule.facing) || out1 > rule.edge) return;
+    const bool side = !(facing < -rule.facing);
+    if (!side && out1 <= rule.strict && h1.gap >= -rule.round &&
         h1.gap <= rule.edge * kernels::sqrt(m.f.area2))
       covered = true;
     if (!(h1.gap < -rule.round && h1.gap > -rule.dmax)) return;
@@ -91,10 +122,13 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
     e.outside = outc > 0 ? outc : 0.0;
     e.extended = outc > rule.strict || out1 > rule.strict;
     if (e.extended && !e.crossing) return;  // the extension is for entries over the edge only
+    e.side = side;
+    if (side && (e.extended || !e.crossing)) return;  // a side facet: crossed strictly inside
     if (!any || e.before(best)) best = e;
     any = true;
   });
-  if (!any || (best.extended && covered)) return Hit{};
+  if (!any || ((best.extended || best.side) && covered)) return Hit{};
+  if (!best.crossing && detail::outside_master(grid1, facets, x1, y1, best.hit, rule)) return Hit{};
   best.hit.inside = true;
   return best.hit;
 }

@@ -141,6 +141,53 @@ TEST(EnteredFacet, HoveringAndLeavingNodesAreNotCaught) {
   EXPECT_LT(c.enter(z0, z1, ns).facet, 0);
 }
 
+// The bottom rim node of a cylinder whose outer face is the slave (hollow_cylinders), pressed
+// against the master's side face (+x), slides below the master's bottom face and comes back up
+// through it, 5e-4 inside the side face's plane. The bottom face is at the node's side (n_f .
+// n_s = 0): it is crossed strictly inside, and catches the node at the depth of this step's
+// crossing (1e-3), not the side face from beside at the 6e-4 the node had gone under.
+TEST(EnteredFacet, CornerNodeRisingThroughASideFacet) {
+  Cube c;
+  const double ns[3] = {-1, 0, 0};
+  const double y0[3] = {1 - 5e-4, 0.5, -1e-3}, y1[3] = {1 - 6e-4, 0.5, 1e-3};
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_NEAR(c.normal(h.facet)[2], -1, 1e-15);
+  EXPECT_NEAR(h.gap, -1e-3, 1e-12);
+  // the same motion without the rise stays outside the master: not caught
+  const double z0[3] = {1 - 5e-4, 0.5, -1e-3}, z1[3] = {1 - 6e-4, 0.5, -2e-3};
+  EXPECT_LT(c.enter(z0, z1, ns).facet, 0);
+}
+
+// A cube whose +x face leans inward (its top edge moved to x = 0.95): the edge with the bottom
+// face is acute, and the +x face's prism reaches below the bottom face's plane. A node there,
+// 2e-3 behind the +x face with its CPP inside it but 5e-5 below the bottom face, is outside the
+// master: it is not caught from beside on the +x face. Above the bottom face it is inside and
+// is caught.
+TEST(EnteredFacet, NodeInTheSliverOfAnAcuteEdge) {
+  Cube c;
+  for (int k : {5, 7}) c.x0[3 * k] = c.x1[3 * k] = 0.95;
+  const auto n = c.normal(10);  // the +x face's first triangle
+  ASSERT_GT(n[0], 0.99);
+  const double d[3] = {-n[2], 0, n[0]};  // up the face
+  auto at = [&](double depth, double up, double y[3]) {
+    const double e[3] = {1, 0.5, 0};
+    for (int i = 0; i < 3; ++i) y[i] = e[i] - depth * n[i] + up * d[i];
+  };
+  double y0[3], y1[3];
+  at(1.5e-3, 5e-5, y0);
+  at(2e-3, 5e-5, y1);
+  ASSERT_LT(y1[2], 0);  // below the bottom face's plane
+  const double ns[3] = {-1, 0, 0};
+  EXPECT_LT(c.enter(y0, y1, ns).facet, 0);
+  at(1.5e-3, 2e-4, y0);
+  at(2e-3, 2e-4, y1);
+  ASSERT_GT(y1[2], 0);
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_GT(c.normal(h.facet)[0], 0.99);
+}
+
 // facet_clamp gives the closest point of the triangle (brute force over a fine sampling).
 TEST(FacetClamp, MatchesBruteForce) {
   std::mt19937 rng(3);
