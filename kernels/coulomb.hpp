@@ -141,7 +141,8 @@ KOKKOS_INLINE_FUNCTION bool coulomb_slip(const double xs0[3], const double xs1[3
     sn += s[r] * n[r];
     h += (xsh[r] - xmN) * n[r];
     fN += gs[r] * n[r];
-    for (int k = 0; k < 2; ++k) dtau[k][r] = (xm1[k + 1][r] - xm1[0][r]) - (xm0[k + 1][r] - xm0[0][r]);
+    for (int k = 0; k < 2; ++k)
+      dtau[k][r] = (xm1[k + 1][r] - xm1[0][r]) - (xm0[k + 1][r] - xm0[0][r]);
   }
   double sT[3], slip2 = 0;
   for (int r = 0; r < 3; ++r) {

@@ -17,7 +17,10 @@ ActiveSetLoop::ActiveSetLoop(const Contact& contact, linalg::Elimination& elim,
 bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active>& active,
                           const Solve& solve, SettledSet& out, Vector* p) {
   std::vector<Active> trial = active;
-  for (auto& a : trial) a.pinned = a.reversed = false;  // docs/THEORY.md §11.4: per step
+  for (auto& a : trial) {  // docs/THEORY.md §11.4: per step
+    a.pinned = false;
+    a.slid = a.slip;
+  }
   std::set<int> released, pinned;
   out.stats = StepContactStats{};
   std::vector<double> fN;

@@ -1,5 +1,6 @@
 #include "emcontact/contact/constraints.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
 #include "emcontact/parallel.hpp"
@@ -92,6 +93,22 @@ void ActiveConstraints::subtract_loads(const std::vector<std::pair<GO, double>>&
     const LO l = map.getLocalElement(static_cast<GO>(all[k]));
     if (l != Tpetra::Details::OrdinalTraits<LO>::invalid()) gv(l, 0) -= all[k + 1];
   }
+}
+
+// docs/THEORY.md §11.4: a Coulomb entry still sliding against its direction after 4 iterations,
+// or a solve with sliding entries 8 iterations without 6 decades (Newton is quadratic where
+// the sliding solution exists), has no sliding solution: the active-set loop makes the entries
+// that did not slide at t_n stick.
+bool ActiveConstraints::abandon(int iteration, double r, double r0) {
+  if (iteration < 4) return false;
+  int stalls = 0, slides = 0;
+  for (const Law* law : present_) {
+    stalls += law->stalls() ? 1 : 0;
+    slides += law->slides() ? 1 : 0;
+  }
+  int flags[2] = {stalls, slides}, all[2];
+  Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 2, flags, all);
+  return all[0] > 0 || (iteration >= 8 && all[1] > 0 && r > 1e-6 * r0);
 }
 
 void ActiveConstraints::after_update(const Vector&, Vector& u1) {

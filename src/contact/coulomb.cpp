@@ -37,6 +37,8 @@ class Coulomb final : public Law {
   int settle(const LawState& s, std::vector<Active>& active, const Vector& g) const override;
   int after_failure(const LawState& s, std::vector<Active>& active) const override;
   void activate(const LawState& s, std::vector<Active>& fresh, const Vector& g) const override;
+  bool stalls() const override { return slip_->stalls(); }
+  bool slides() const override { return slip_->slides(); }
   double dissipation(const LawState& s, const std::vector<Active>& active,
                      const Vector& g) const override;
 
@@ -97,8 +99,8 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
     const double mu = s.contact.pairs()[a.pair].mu;
     const kernels::CoulombState& c = st[k];
     if (!a.slip) {
-      const double ft = std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] +
-                                  c.trial[2] * c.trial[2]);
+      const double ft =
+          std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] + c.trial[2] * c.trial[2]);
       // out of the cone (beyond its round-off) and not returned in this step: slide
       if (a.pinned || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9))) continue;
       a.slip = true;
@@ -108,8 +110,8 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
     }
     const double along = c.sT[0] * a.dir[0] + c.sT[1] * a.dir[1] + c.sT[2] * a.dir[2];
     // the slip vanished (below a few ulps of the facet's size) or turned back: stick
-    if (mu > 0 && (c.slip <= 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge ||
-                   along < 0)) {
+    if (mu > 0 &&
+        (c.slip <= 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge || along < 0)) {
       back.push_back(where[k]);
       ++changed;
       continue;
@@ -160,7 +162,8 @@ double Coulomb::dissipation(const LawState& s, const std::vector<Active>& active
   const auto st = states(s, entries, g);
   double d = 0;
   for (std::size_t k = 0; k < entries.size(); ++k)
-    if (entries[k].slip) d += s.contact.pairs()[entries[k].pair].mu * std::fabs(st[k].fN) * st[k].slip;
+    if (entries[k].slip)
+      d += s.contact.pairs()[entries[k].pair].mu * std::fabs(st[k].fN) * st[k].slip;
   return d;
 }
 

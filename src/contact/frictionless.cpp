@@ -26,17 +26,22 @@ class Frictionless final : public Law {
             LawRows& out) const override;
   void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
     reversed_.clear();
+    reversed_now_ = false;
     after_update(s, active, u1);
   }
   void after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const override;
   bool releases(const Active& a, double fN) const override { return fN < 0 || a.off; }
   int after_failure(const LawState& s, std::vector<Active>& active) const override;
+  bool stalls() const override { return reversed_now_; }
+  bool slides() const override { return sliding_now_; }
 
  private:
   Kind own_;  ///< the pairs' type: frictionless, or Coulomb's sliding entries (§11)
   /// Coulomb: the slaves whose slip turned against their direction at an iterate of the
   /// current solve (docs/THEORY.md §11.4), cleared at its start.
   mutable std::vector<int> reversed_;
+  mutable bool reversed_now_ = false;  ///< at the last iterate
+  mutable bool sliding_now_ = false;   ///< Coulomb entries at the last iterate
 };
 
 std::vector<Active> mine(const Contact& contact, Kind own, const std::vector<Active>& active,
@@ -120,8 +125,10 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
 // dummy.
 void Frictionless::rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
                         const Matrix* A, LawRows& out) const {
+  reversed_now_ = sliding_now_ = false;
   const auto entries = mine(s.contact, own_, active);
   if (entries.empty() || !g || !A) return;
+  sliding_now_ = own_ == Kind::coulomb;
   const int n = static_cast<int>(entries.size());
   Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks("emc::frictionless_blocks", n);
   const Refs refs = s.contact.refs(entries);
@@ -144,9 +151,11 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
     scatter(s, a, bh(k), fr, out);
     if (fr) {  // docs/THEORY.md §11.4: an iterate sliding against the entry's direction
       const double along = fr->dir[0] * a.dir[0] + fr->dir[1] * a.dir[1] + fr->dir[2] * a.dir[2];
-      if (along < 0 && s.contact.pairs()[a.pair].mu > 0 &&
-          std::find(reversed_.begin(), reversed_.end(), a.slave) == reversed_.end())
-        reversed_.push_back(a.slave);
+      if (along < 0 && s.contact.pairs()[a.pair].mu > 0) {
+        reversed_now_ = true;
+        if (std::find(reversed_.begin(), reversed_.end(), a.slave) == reversed_.end())
+          reversed_.push_back(a.slave);
+      }
     }
     double beta = 0;
     for (int c = 0; c < 3; ++c) beta += diagonal_entry(*A, fem::dof_gid(a.slave, c)) / 3;
@@ -236,7 +245,8 @@ void Frictionless::after_update(const LawState& s, std::vector<Active>& active, 
 int Frictionless::after_failure(const LawState&, std::vector<Active>& active) const {
   int changed = 0;
   for (auto& a : active)
-    if (a.slip && std::find(reversed_.begin(), reversed_.end(), a.slave) != reversed_.end()) {
+    if (a.slip &&
+        (!a.slid || std::find(reversed_.begin(), reversed_.end(), a.slave) != reversed_.end())) {
       a.slip = false;
       a.pinned = true;
       ++changed;

@@ -22,7 +22,7 @@ struct Active {
   // Coulomb friction (docs/THEORY.md §11)
   bool slip = false;          ///< slides (frictionless constraint plus friction) or sticks
   bool pinned = false;        ///< returned to stick in this step: stays stick to its end (§11.4)
-  bool reversed = false;      ///< a Newton iterate of this step slid against dir
+  bool slid = false;          ///< slid at t_n (the state the step started with)
   double dir[3] = {0, 0, 0};  ///< the slip direction of the last solve (or the trial's)
   bool operator<(const Active& o) const { return slave < o.slave; }
 };

@@ -25,6 +25,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   void before_reduce(const Vector& u0, const Vector& u1, Vector& g, const Matrix& A) override;
   void after_update(const Vector& u0, Vector& u1) override;
   double residual_roundoff() const override { return roundoff_; }
+  bool abandon(int iteration, double r, double r0) override;
 
  private:
   const Contact& contact_;

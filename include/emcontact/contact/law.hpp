@@ -66,6 +66,10 @@ class Law {
   virtual int settle(const LawState&, std::vector<Active>&, const Vector&) const { return 0; }
   /// §6.3: the state (stick/slip) of the law's entries `fresh` activated on the solve (g).
   virtual void activate(const LawState&, std::vector<Active>&, const Vector&) const {}
+  /// Whether one of the law's entries slides against its direction at the last iterate.
+  virtual bool stalls() const { return false; }
+  /// Whether the law has Coulomb entries sliding at the last iterate.
+  virtual bool slides() const { return false; }
   /// After a failed solve: entries whose state is to blame change it; returns how many (local).
   virtual int after_failure(const LawState&, std::vector<Active>&) const { return 0; }
   /// The energy the law's entries dissipated over the step at the solution (local sum).

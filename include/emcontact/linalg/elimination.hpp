@@ -29,6 +29,10 @@ class ConstraintHooks {
   /// This rank's share (a sum of squares) of the reduced residual that restoring the constraints
   /// leaves at every iterate (the projection's round-off; Newton's floor, docs/THEORY.md §1.6).
   virtual double residual_roundoff() const { return 0; }
+  /// Whether the solve is to be given up at this (unconverged) iterate with residual r (r0 at
+  /// the start): a constraint state it assumed cannot hold (Coulomb slip with no sliding
+  /// solution, docs/THEORY.md §11.4). Collective.
+  virtual bool abandon(int /*iteration*/, double /*r*/, double /*r0*/) { return false; }
 };
 
 class Elimination {

@@ -240,7 +240,6 @@ void make(unsigned seed, bool deforming, System& sys, State& st, bool close = fa
   EXPECT_LT(project(sys, st), 0.0) << "the slave's CPP should be inside the facet";
 }
 
-
 struct Friction {
   k::FrictionlessBlocks b;
   k::CoulombSlip c;

@@ -51,9 +51,9 @@ MonitorRow make_row(long step, const std::vector<double>& v, std::size_t offset)
 
 /// Every double field of a row, in column order.
 std::vector<double> doubles_of(const MonitorRow& r) {
-  return {r.time,   r.kinetic, r.elastic, r.potential, r.total,   r.L[0],
-          r.L[1],   r.L[2],    r.J[0],    r.J[1],      r.J[2],    r.dt,
-          r.com[0], r.com[1],  r.com[2],  r.gap_min,   r.gap_max, r.normal_force_min,
+  return {r.time,      r.kinetic, r.elastic, r.potential, r.total,   r.L[0],
+          r.L[1],      r.L[2],    r.J[0],    r.J[1],      r.J[2],    r.dt,
+          r.com[0],    r.com[1],  r.com[2],  r.gap_min,   r.gap_max, r.normal_force_min,
           r.dissipated};
 }
 
