@@ -177,9 +177,11 @@ output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::s
     for (const auto& r : rows) w.monitors->append(r);
     row0 = rows.front();
   }
-  double e0 = row0.total;  // every rank needs E0 for the energy error
-  Teuchos::broadcast(comm, 0, 1, &e0);
-  row0.total = e0;
+  double e0[2] = {row0.total, rows.empty() ? 0.0 : rows.back().dissipated};
+  Teuchos::broadcast(comm, 0, 2, e0);  // every rank needs E0 for the energy error
+  row0.total = e0[0];
+  // docs/THEORY.md §11.7: D goes on from the checkpoint step's row (written to round-trip)
+  sim.state.dissipated = e0[1];
   return row0;
 }
 

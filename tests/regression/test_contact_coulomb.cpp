@@ -25,8 +25,7 @@ double balance(const std::vector<MonitorRow>& rows, double scale, bool& monotone
   double worst = 0;
   monotone = true;
   for (std::size_t k = 0; k < rows.size(); ++k) {
-    worst = std::max(worst,
-                     std::fabs(rows[k].total + rows[k].dissipated - rows[0].total) / scale);
+    worst = std::max(worst, std::fabs(rows[k].total + rows[k].dissipated - rows[0].total) / scale);
     monotone &= rows[k].dissipated >= (k ? rows[k - 1].dissipated : 0.0);
   }
   return worst;
@@ -40,9 +39,9 @@ constexpr double kG = 9.81;
 // with mu = 0.3 (the master deforms; on 2 ranks a slave and its master facet may be on different
 // ranks): E_n + D_n = E_0 to 1e-10 of E_0 at every step, D > 0 and non-decreasing.
 TEST(Coulomb, EnergyBalanceWithADeformableMaster) {
-  const auto rows = run_case("two_blocks.xml",
-                             {"Contact/A on B/type=coulomb", "Contact/A on B/friction coefficient=0.3"},
-                             "out_two_blocks_coulomb" + suffix());
+  const auto rows = run_case(
+      "two_blocks.xml", {"Contact/A on B/type=coulomb", "Contact/A on B/friction coefficient=0.3"},
+      "out_two_blocks_coulomb" + suffix());
   bool monotone;
   const double b = balance(rows, std::fabs(rows[0].total), monotone);
   std::printf("two blocks, mu = 0.3: max |E + D - E0| / E0 = %.3e, D = %.4e of E0 = %.4e\n", b,
@@ -97,18 +96,18 @@ TEST_P(TiltedBlock, StaysOrSlidesAsTheClosedForm) {
   std::snprintf(gravity, sizeof gravity, "Loads/gravity={%.17g, 0, %.17g}", kG * std::sin(th),
                 -kG * std::cos(th));
   std::snprintf(coef, sizeof coef, "Contact/block on ground/friction coefficient=%g", mu);
-  const auto rows = run_case("slide.xml",
-                             {"Bodies/block/Initial/velocity={0, 0, 0}", gravity, coef,
-                              "Time/end=0.2"},
-                             "out_tilt_coulomb_" + std::to_string(int(mu * 10)) + suffix());
+  const auto rows = run_case(
+      "slide.xml", {"Bodies/block/Initial/velocity={0, 0, 0}", gravity, coef, "Time/end=0.2"},
+      "out_tilt_coulomb_" + std::to_string(int(mu * 10)) + suffix());
   bool monotone;
   const double b = balance(rows, 0.5 * mass * kG * 0.1, monotone);  // E0 = 0: scale m g h/2
   const double a = kG * (std::sin(th) - mu * std::cos(th));
   const auto& r = rows.back();
   const double v = r.L[0] / mass;
-  std::printf("tilted block mu %.1f (tan %.4f): x %.3e v %.4e at t %.3f (closed form a t = %.4e)"
-              ", balance %.2e\n",
-              mu, std::tan(th), r.com[0], v, r.time, a > 0 ? a * r.time : 0.0, b);
+  std::printf(
+      "tilted block mu %.1f (tan %.4f): x %.3e v %.4e at t %.3f (closed form a t = %.4e)"
+      ", balance %.2e\n",
+      mu, std::tan(th), r.com[0], v, r.time, a > 0 ? a * r.time : 0.0, b);
   EXPECT_LT(b, 1e-10);
   EXPECT_TRUE(monotone);
   if (a < 0) {
@@ -124,9 +123,9 @@ INSTANTIATE_TEST_SUITE_P(Coulomb, TiltedBlock, ::testing::Values(0.3, 0.1));
 // in slip, the friction force and its terms are 0, and the same Newton iterates follow; the
 // monitors agree to 1e-9 of each quantity's scale (the Newton tolerance), D = 0.
 TEST(Coulomb, MuZeroIsFrictionless) {
-  const auto c = run_case("slide.xml",
-                          {"Contact/block on ground/friction coefficient=0", "Time/end=0.1"},
-                          "out_slide_mu0" + suffix());
+  const auto c =
+      run_case("slide.xml", {"Contact/block on ground/friction coefficient=0", "Time/end=0.1"},
+               "out_slide_mu0" + suffix());
   const auto f = run_case("slide.xml",
                           {"Contact/block on ground/type=frictionless",
                            "Contact/block on ground/friction coefficient=0", "Time/end=0.1"},
