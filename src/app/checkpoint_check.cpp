@@ -125,9 +125,11 @@ std::string model_fingerprint(const Simulation& sim) {
     os << "pairs: " << sim.contact->pairs().size() << "\n";
     for (const auto& p : sim.contact->pairs()) {
       os << "pair " << p.name << ": "
-         << (p.kind == contact::Kind::frictionless ? "frictionless" : "full stick") << ", slaves "
-         << p.slaves.size() << ", facets " << p.facets.size() << ", master body " << p.master_body
-         << "\n";
+         << (p.kind == contact::Kind::frictionless ? "frictionless"
+             : p.kind == contact::Kind::coulomb    ? "coulomb"
+                                                   : "full stick")
+         << ", slaves " << p.slaves.size() << ", facets " << p.facets.size() << ", master body "
+         << p.master_body << "\n";
       hash_into(h, p.slaves);
       hash_into(h, p.facets);
     }

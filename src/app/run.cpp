@@ -82,6 +82,7 @@ output::MonitorRow monitor_row(const fem::Discretization& disc, const time::Stat
   r.gap_max = rep.contact.active ? rep.contact.gap_max : 0.0;
   r.contact_resolves = rep.contact.resolves;
   r.normal_force_min = rep.contact.normal_force_min;
+  r.dissipated = s.dissipated;
   r.newton_iterations = rep.newton_iterations;
   r.dt = rep.dt;
   r.linear_iterations = rep.linear_iterations;
@@ -114,12 +115,14 @@ struct Writers {
         const LO l = disc.owned_map()->getLocalElement(fem::dof_gid(s.contact_nodes[k], 0));
         h(l, 0) = s.contact_status[k];
         h(l + 1, 0) = s.contact_force[k];
+        h(l + 2, 0) = k < s.contact_slip.size() ? s.contact_slip[k] : 0;
       }
     }
     const auto packed = (*dofs)(c);
     for (std::size_t n = 0; 3 * n < packed.size(); ++n) {
       f.contact_status.push_back(packed[3 * n]);
       f.normal_force.push_back(packed[3 * n + 1]);
+      f.slip.push_back(packed[3 * n + 2]);
     }
     if (fields) fields->write(f);
   }
@@ -174,9 +177,11 @@ output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::s
     for (const auto& r : rows) w.monitors->append(r);
     row0 = rows.front();
   }
-  double e0 = row0.total;  // every rank needs E0 for the energy error
-  Teuchos::broadcast(comm, 0, 1, &e0);
-  row0.total = e0;
+  double e0[2] = {row0.total, rows.empty() ? 0.0 : rows.back().dissipated};
+  Teuchos::broadcast(comm, 0, 2, e0);  // every rank needs E0 for the energy error
+  row0.total = e0[0];
+  // docs/THEORY.md §11.7: D goes on from the checkpoint step's row (written to round-trip)
+  sim.state.dissipated = e0[1];
   return row0;
 }
 
@@ -207,8 +212,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   // CG needs a symmetric matrix: the mid-point tangent without frictionless contact is; the
   // energy-momentum tangent (docs/THEORY.md §1.4) and the frictionless P^T A Pt + X (§5.4) are not
   bool frictionless = false;
-  for (const auto& pr : sim->contact->pairs())
-    frictionless |= pr.kind == contact::Kind::frictionless;
+  for (const auto& pr : sim->contact->pairs()) frictionless |= pr.kind != contact::Kind::full_stick;
   if (comm->getRank() == 0 &&
       P.sublist("Solver").sublist("Linear").get<std::string>("type") == "cg" &&
       (sim->model.integrator == kernels::Integrator::energy_momentum || frictionless))

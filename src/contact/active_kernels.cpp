@@ -170,6 +170,44 @@ void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
       });
 }
 
+void coulomb_slips(Refs refs, Positions x0, Positions x1, OwnedValues g,
+                   Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks,
+                   Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips) {
+  Kokkos::parallel_for(
+      "emcontact::contact::coulomb_slips", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        const Geometry e(x0, x1, a);
+        double gs[3];
+        for (int c = 0; c < 3; ++c) gs[c] = g(a.dof[c], 0);
+        kernels::coulomb_slip(e.y0, e.y1, e.xm0, e.xm1, a.xi, gs, a.mu, blocks(k), slips(k));
+      });
+}
+
+void coulomb_states(Refs refs, Positions x0, Positions x1, OwnedValues g,
+                    Kokkos::View<kernels::CoulombState*, ExecSpace> states) {
+  Kokkos::parallel_for(
+      "emcontact::contact::coulomb_states", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        const Geometry e(x0, x1, a);
+        double gs[3];
+        for (int c = 0; c < 3; ++c) gs[c] = g(a.dof[c], 0);
+        kernels::coulomb_state(e.y0, e.y1, e.xm0, e.xm1, a.xi, gs, states(k));
+      });
+}
+
+void start_points(Refs refs, Positions x0, Kokkos::View<double* [2], ExecSpace> xi) {
+  Kokkos::parallel_for(
+      "emcontact::contact::start_points", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {
+        const ActiveRef a = refs(k);
+        double xm[3][3], y[3], z[2], gap;
+        facet_at(x0, a, xm);
+        slave_at(x0, a, y);
+        const bool ok = kernels::facet_cpp(y, xm, z, gap);
+        xi(k, 0) = ok ? z[0] : a.xi[0];
+        xi(k, 1) = ok ? z[1] : a.xi[1];
+      });
+}
+
 // docs/THEORY.md §7.4.
 ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn,
                            Values3 N1) {

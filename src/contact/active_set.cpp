@@ -17,6 +17,10 @@ ActiveSetLoop::ActiveSetLoop(const Contact& contact, linalg::Elimination& elim,
 bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active>& active,
                           const Solve& solve, SettledSet& out, Vector* p) {
   std::vector<Active> trial = active;
+  for (auto& a : trial) {  // docs/THEORY.md §11.4: per step
+    a.pinned = false;
+    a.slid = a.slip;
+  }
   std::set<int> released, pinned;
   out.stats = StepContactStats{};
   std::vector<double> fN;
@@ -34,12 +38,32 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       changed = constraints_.use(&trial, std::move(index));
     }
     g = solve(changed, contact_.global_count(static_cast<int>(trial.size())) == 0);
-    if (!g) return false;
+    if (!g) {
+      // docs/THEORY.md §11.4: sliding entries whose slip turned back had no sliding solution:
+      // they stick, and the step is solved again
+      u1.assign(u0);
+      contact_.select(u0, u1, constraints_.index());
+      x0 = contact_.positions(u0);
+      const LawState s{contact_, constraints_.index(), x0, x0, {}};
+      int back = 0;
+      for (const Law* law : contact_.laws()) back += law->after_failure(s, trial);
+      if (contact_.global_count(back) == 0) return false;
+      ++out.stats.resolves;
+      continue;
+    }
     contact_.select(u0, u1, constraints_.index());  // the exact sweep of the solution
     x0 = contact_.positions(u0);
     x1 = contact_.positions(u1);
-    const auto fresh = contact_.detect(x0, x1, trial);
+    auto fresh = contact_.detect(x0, x1, trial);
     fN = contact_.normal_forces(*g, x0, x1, trial);
+    int n_state = 0;  // docs/THEORY.md §11.4: the return map (stick <-> slip)
+    {
+      const LawState s{contact_, constraints_.index(), x0, x1, {}};
+      for (const Law* law : contact_.laws()) {
+        n_state += law->settle(s, trial, *g);
+        law->activate(s, fresh, *g);
+      }
+    }
     std::vector<Active> next;
     int n_release = 0;
     for (std::size_t k = 0; k < trial.size(); ++k) {
@@ -59,7 +83,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       }
       next.push_back(a);
     }
-    const int changes = contact_.global_count(static_cast<int>(fresh.size()) + n_release);
+    const int changes = contact_.global_count(static_cast<int>(fresh.size()) + n_release + n_state);
     if (changes == 0) break;
     std::sort(next.begin(), next.end());
     trial = std::move(next);
@@ -76,6 +100,7 @@ void ActiveSetLoop::accept(Positions x0, Positions x1, const Vector& g, std::vec
   out.normal_force.clear();
   out.nodes.clear();
   out.status.clear();
+  out.slip.clear();
   out.force.assign(fN.begin(), fN.end());
   for (std::size_t k = 0; k < trial.size(); ++k) {
     const bool stays = !contact_.law(trial[k].pair).releases(trial[k], fN[k]);
@@ -86,6 +111,13 @@ void ActiveSetLoop::accept(Positions x0, Positions x1, const Vector& g, std::vec
       out.normal_force.push_back(fN[k]);
     }
   }
+  {  // docs/THEORY.md §11.2: the energy friction dissipated over the step
+    const LawState s{contact_, constraints_.index(), x0, x1, {}};
+    double d = 0;
+    for (const Law* law : contact_.laws()) d += law->dissipation(s, trial, g);
+    Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 1, &d, &out.dissipated);
+  }
+  for (const auto& a : trial) out.slip.push_back(a.slip ? 1 : 0);
   if (p) {  // docs/THEORY.md §7.4: the work the closure made the contact forces do
     out.closure = contact_.closure_work(g, x0, x1, trial, *p);
     contact_.mark_kept_gaps(out.active, x1);

@@ -1,6 +1,9 @@
 #include "emcontact/contact/constraints.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
+
+#include "emcontact/parallel.hpp"
 
 namespace emc::contact {
 
@@ -23,10 +26,10 @@ LawState ActiveConstraints::state(Positions x1) const {
 // docs/THEORY.md §3, §4.2: rebuild P only when the active set changes (on any rank: collective).
 bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
   trial_ = trial;
-  std::vector<std::array<double, 4>> key;
+  std::vector<std::array<double, 5>> key;
   std::vector<int> count(contact_.laws().size(), 0);
   for (const auto& a : *trial) {
-    key.push_back({double(a.slave), double(a.facet), a.xi[0], a.xi[1]});
+    key.push_back({double(a.slave), double(a.facet), a.xi[0], a.xi[1], double(a.slip)});
     const Law* law = &contact_.law(a.pair);
     for (std::size_t l = 0; l < count.size(); ++l) count[l] += contact_.laws()[l] == law;
   }
@@ -59,8 +62,7 @@ void ActiveConstraints::start(const Vector& u0, Vector& u1) {
   if (iterate_dependent_) index_ = contact_.gather(*trial_);  // facets and xi moved
 }
 
-void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vector& g,
-                                      const Matrix& A) {
+void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, Vector& g, const Matrix& A) {
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: Newton iterates");
   Teuchos::TimeMonitor tm(*timer);  // beta, and the rows that follow the iterate
   roundoff_ = 0;
@@ -74,7 +76,39 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, const Vec
   for (const Law* law : present_) law->rows(s, *trial_, &g, &A, out);
   roundoff_ = out.roundoff;
   elim_.set_constraints(fixed_, out.rows, out.beta);
-  elim_.set_linearisation(out.pt_rows, out.X);
+  elim_.set_linearisation(out.pt_rows, out.X, out.pl_rows);
+  subtract_loads(out.load, g);
+}
+
+// docs/THEORY.md §11.1: g -= the friction forces (a master dof may be owned by another rank).
+void ActiveConstraints::subtract_loads(const std::vector<std::pair<GO, double>>& load,
+                                       Vector& g) const {
+  if (contact_.global_count(static_cast<int>(load.size())) == 0) return;
+  std::vector<double> send;
+  for (const auto& [dof, v] : load) send.insert(send.end(), {double(dof), v});
+  const auto all = allgather(*contact_.disc_comm(), send);
+  auto gv = g.getLocalViewHost(Tpetra::Access::ReadWrite);
+  const auto& map = *g.getMap();
+  for (std::size_t k = 0; k + 1 < all.size(); k += 2) {
+    const LO l = map.getLocalElement(static_cast<GO>(all[k]));
+    if (l != Tpetra::Details::OrdinalTraits<LO>::invalid()) gv(l, 0) -= all[k + 1];
+  }
+}
+
+// docs/THEORY.md §11.4: a Coulomb entry still sliding against its direction after 4 iterations,
+// or a solve with sliding entries 8 iterations without 6 decades (Newton is quadratic where
+// the sliding solution exists), has no sliding solution: the active-set loop makes the entries
+// that did not slide at t_n stick.
+bool ActiveConstraints::abandon(int iteration, double r, double r0) {
+  if (iteration < 4) return false;
+  int stalls = 0, slides = 0;
+  for (const Law* law : present_) {
+    stalls += law->stalls() ? 1 : 0;
+    slides += law->slides() ? 1 : 0;
+  }
+  int flags[2] = {stalls, slides}, all[2];
+  Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 2, flags, all);
+  return all[0] > 0 || (iteration >= 8 && all[1] > 0 && r > 1e-6 * r0);
 }
 
 void ActiveConstraints::after_update(const Vector&, Vector& u1) {

@@ -64,7 +64,8 @@ Refs Contact::refs(const std::vector<Active>& active) const {
     e.xi[1] = a.xi[1];
     e.edge = pr.edge;
     e.closes = closes(a);
-    e.frictionless = pr.kind == Kind::frictionless;
+    e.frictionless = slides(pr, a);
+    e.mu = pr.mu;
   }
   Kokkos::deep_copy(r, h);
   return r;
@@ -99,16 +100,18 @@ void Contact::mark_kept_gaps(std::vector<Active>& active, Positions x1) const {
 ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
   std::vector<double> send;
   for (const auto& a : mine)
-    send.insert(send.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1]});
+    send.insert(send.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1],
+                             double(a.slip)});
   const auto all = allgather(*disc_.comm(), send);
   ActiveIndex index;
-  for (std::size_t k = 0; k + 4 < all.size(); k += 5) {
+  for (std::size_t k = 0; k + 5 < all.size(); k += 6) {
     Active a;
     a.slave = static_cast<int>(all[k]);
     a.pair = static_cast<int>(all[k + 1]);
     a.facet = static_cast<int>(all[k + 2]);
     a.xi[0] = all[k + 3];
     a.xi[1] = all[k + 4];
+    a.slip = all[k + 5] != 0;
     index.by_slave.emplace(a.slave, a);
   }
   return index;
@@ -135,7 +138,7 @@ void Contact::expand_node(int node, int c, double w, const ActiveIndex& index,
   path.push_back(node);
   for (int i = 0; i < 3; ++i) expand_node(f[i], c, w * N[i], index, xh, path, r);
   path.pop_back();
-  if (pairs_[a.pair].kind == Kind::frictionless && xh.extent(0) > 0) {  // + T dq at n+1/2 (§5)
+  if (slides(pairs_[a.pair], a) && xh.extent(0) > 0) {  // + T dq at n+1/2 (§5)
     double xm[3][3];
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i) xm[j][i] = xh(nodes_.local(f[j]), i);

@@ -2,6 +2,7 @@
 // factor Pt and the variation X of P^T; after every Newton update the slave is projected back
 // (update steps 2-3), moving on to a neighbouring facet beyond the hysteresis tol_f.
 #include <Teuchos_TimeMonitor.hpp>
+#include <algorithm>
 #include <map>
 #include <memory>
 
@@ -16,24 +17,39 @@ namespace {
 
 class Frictionless final : public Law {
  public:
-  Kind kind() const override { return Kind::frictionless; }
+  explicit Frictionless(Kind own) : own_(own) {}
+  Kind kind() const override { return own_; }
   double activation_weight() const override { return 0.5; }
   bool clamps(const Pair&) const override { return true; }
   bool iterate_dependent() const override { return true; }
   void rows(const LawState& s, const std::vector<Active>& active, const Vector* g, const Matrix* A,
             LawRows& out) const override;
   void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
+    reversed_.clear();
+    reversed_now_ = false;
     after_update(s, active, u1);
   }
   void after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const override;
   bool releases(const Active& a, double fN) const override { return fN < 0 || a.off; }
+  int after_failure(const LawState& s, std::vector<Active>& active) const override;
+  bool stalls() const override { return reversed_now_; }
+  bool slides() const override { return sliding_now_; }
+
+ private:
+  Kind own_;  ///< the pairs' type: frictionless, or Coulomb's sliding entries (§11)
+  /// Coulomb: the slaves whose slip turned against their direction at an iterate of the
+  /// current solve (docs/THEORY.md §11.4), cleared at its start.
+  mutable std::vector<int> reversed_;
+  mutable bool reversed_now_ = false;  ///< at the last iterate
+  mutable bool sliding_now_ = false;   ///< Coulomb entries at the last iterate
 };
 
-std::vector<Active> mine(const Contact& contact, const std::vector<Active>& active,
+std::vector<Active> mine(const Contact& contact, Kind own, const std::vector<Active>& active,
                          std::vector<std::size_t>* where = nullptr) {
   std::vector<Active> out;
   for (std::size_t k = 0; k < active.size(); ++k)
-    if (contact.pairs()[active[k].pair].kind == Kind::frictionless) {
+    if (contact.pairs()[active[k].pair].kind == own &&
+        slides(contact.pairs()[active[k].pair], active[k])) {
       out.push_back(active[k]);
       if (where) where->push_back(k);
     }
@@ -44,7 +60,7 @@ std::vector<Active> mine(const Contact& contact, const std::vector<Active>& acti
 /// j = 3 i + c is expanded by expand_node (the dof itself if free, nothing if rigid or fixed,
 /// the node's own row of P if it is an active slave; X's rows and columns go through it too).
 void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBlocks& b,
-             LawRows& out) {
+             const kernels::CoulombSlip* fr, LawRows& out) {
   const auto& f = s.contact.pairs()[a.pair].facets[a.facet];
   linalg::PRow mq[9];
   for (int j = 0; j < 9; ++j) {
@@ -68,6 +84,11 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
       pt.cols.push_back(q[k]);
       pt.weights.push_back(b.Ptq[r][k]);
     }
+    if (fr) {  // docs/THEORY.md §11.3: the left factor's slip columns carry f_N's variation
+      linalg::PRow pl = p;
+      for (int k = 0; k < 2; ++k) pl.weights[pl.weights.size() - 2 + k] = fr->Plq[r][k];
+      out.pl_rows.push_back(std::move(pl));
+    }
     out.rows.push_back(std::move(p));
     out.pt_rows.push_back(std::move(pt));
   }
@@ -83,7 +104,20 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
         if (b.Xmm[j][i] != 0)
           for (std::size_t e = 0; e < mq[i].cols.size(); ++e)
             out.X.push_back({dj, mq[i].cols[e], wj * mq[i].weights[e] * b.Xmm[j][i]});
+      if (fr)
+        for (int k = 0; k < 2; ++k) out.X.push_back({q[k], dj, wj * fr->Xsq[k][j]});
     }
+  if (!fr) return;
+  // docs/THEORY.md §11: the friction pair, f_T on the slave and -N_i f_T on its deformable master
+  // nodes (subtracted from g), and its derivative on the slip columns
+  for (int k = 0; k < 2; ++k)
+    for (int l = 0; l < 2; ++l) out.X.push_back({q[k], q[l], fr->Xqq[k][l]});
+  const int nodes = s.contact.disc_model().num_nodes();
+  for (int c = 0; c < 3; ++c) {
+    out.load.emplace_back(fem::dof_gid(a.slave, c), fr->fT[c]);
+    for (int i = 0; i < 3; ++i)
+      if (f[i] < nodes) out.load.emplace_back(fem::dof_gid(f[i], c), -fr->N[i] * fr->fT[c]);
+  }
 }
 
 // docs/THEORY.md §5.2, §5.4: P rows du_s = N du_m + T dq, the exact right factor Pt and the
@@ -91,14 +125,21 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
 // dummy.
 void Frictionless::rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
                         const Matrix* A, LawRows& out) const {
-  const auto entries = mine(s.contact, active);
+  reversed_now_ = sliding_now_ = false;
+  const auto entries = mine(s.contact, own_, active);
   if (entries.empty() || !g || !A) return;
+  sliding_now_ = own_ == Kind::coulomb;
   const int n = static_cast<int>(entries.size());
   Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks("emc::frictionless_blocks", n);
   const Refs refs = s.contact.refs(entries);
   contact::frictionless_blocks(refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly),
                                blocks);
   auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), blocks);
+  Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips("emc::coulomb_slips",
+                                                       own_ == Kind::coulomb ? n : 0);
+  if (own_ == Kind::coulomb)
+    coulomb_slips(refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly), blocks, slips);
+  auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), slips);
   Values r("emc::position_roundoff", n);
   position_roundoff(refs, s.x1, r);
   auto rh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), r);
@@ -106,7 +147,16 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
   Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the scatter into P's rows)
   for (int k = 0; k < n; ++k) {
     const Active& a = entries[k];
-    scatter(s, a, bh(k), out);
+    const kernels::CoulombSlip* fr = own_ == Kind::coulomb ? &fh(k) : nullptr;
+    scatter(s, a, bh(k), fr, out);
+    if (fr) {  // docs/THEORY.md §11.4: an iterate sliding against the entry's direction
+      const double along = fr->dir[0] * a.dir[0] + fr->dir[1] * a.dir[1] + fr->dir[2] * a.dir[2];
+      if (along < 0 && s.contact.pairs()[a.pair].mu > 0) {
+        reversed_now_ = true;
+        if (std::find(reversed_.begin(), reversed_.end(), a.slave) == reversed_.end())
+          reversed_.push_back(a.slave);
+      }
+    }
     double beta = 0;
     for (int c = 0; c < 3; ++c) beta += diagonal_entry(*A, fem::dof_gid(a.slave, c)) / 3;
     out.beta.emplace_back(fem::dof_gid(a.slave, 2), beta);  // eq. 59
@@ -148,7 +198,7 @@ void switch_facets(const LawState& s, std::vector<Active>& entries, Refs refs, P
 void Frictionless::after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const {
   const double tol_f = 1e-3;
   std::vector<std::size_t> where;
-  auto entries = mine(s.contact, active, &where);
+  auto entries = mine(s.contact, own_, active, &where);
   const int n = static_cast<int>(entries.size());
   const Positions x1 = s.contact.positions(u1);
   if (n == 0) return;
@@ -190,10 +240,25 @@ void Frictionless::after_update(const LawState& s, std::vector<Active>& active, 
   }
 }
 
+// docs/THEORY.md §11.4: a solve that failed while a sliding entry's slip turned against its
+// direction had no sliding solution: those entries stick for the rest of the step.
+int Frictionless::after_failure(const LawState&, std::vector<Active>& active) const {
+  int changed = 0;
+  for (auto& a : active)
+    if (a.slip &&
+        (!a.slid || std::find(reversed_.begin(), reversed_.end(), a.slave) != reversed_.end())) {
+      a.slip = false;
+      a.pinned = true;
+      ++changed;
+    }
+  reversed_.clear();
+  return changed;
+}
+
 }  // namespace
 
-std::shared_ptr<const Law> make_frictionless() {
-  return std::make_shared<Frictionless>();
+std::shared_ptr<const Law> make_frictionless(Kind own) {
+  return std::make_shared<Frictionless>(own);
 }
 
 }  // namespace emc::contact

@@ -13,7 +13,8 @@ namespace {
 
 class FullStick final : public Law {
  public:
-  Kind kind() const override { return Kind::full_stick; }
+  explicit FullStick(Kind own) : own_(own) {}
+  Kind kind() const override { return own_; }
   double activation_weight() const override { return 0.0; }
   // docs/THEORY.md §7.2: a closing node keeps its CPP in the edge extension (closing to a
   // clamped xi drags it along the facet)
@@ -24,6 +25,10 @@ class FullStick final : public Law {
   void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override;
   void after_update(const LawState&, std::vector<Active>&, Vector&) const override {}
   bool releases(const Active&, double fN) const override { return fN < 0; }
+
+ private:
+  Kind own_;  ///< the pairs' type: full stick, or Coulomb's sticking entries (§11)
+  bool mine(const Pair& p, const Active& a) const { return p.kind == own_ && sticks(p, a); }
 };
 
 // docs/THEORY.md §3.1, §4.2: du_s = N du_m; the slave's own column of P is zero (three dummies).
@@ -34,7 +39,7 @@ void FullStick::rows(const LawState& s, const std::vector<Active>& active, const
   const auto& pairs = s.contact.pairs();
   std::vector<GO> dummies;
   for (const auto& a : active) {
-    if (pairs[a.pair].kind != Kind::full_stick) continue;
+    if (!mine(pairs[a.pair], a)) continue;
     const auto& f = pairs[a.pair].facets[a.facet];
     double N[3];
     kernels::facet_shape(a.xi, N);
@@ -61,7 +66,7 @@ void FullStick::start(const LawState& s, std::vector<Active>& active, Vector& u1
   const auto& m = contact.disc_model();
   std::vector<Active> closing;
   for (const auto& a : active)
-    if (contact.pairs()[a.pair].kind == Kind::full_stick && contact.closes(a) && !m.fixed[a.slave])
+    if (mine(contact.pairs()[a.pair], a) && contact.closes(a) && !m.fixed[a.slave])
       closing.push_back(a);
   if (contact.global_count(static_cast<int>(closing.size())) == 0) return;
   const Refs refs = contact.refs(closing);
@@ -83,8 +88,8 @@ void FullStick::start(const LawState& s, std::vector<Active>& active, Vector& u1
 
 }  // namespace
 
-std::shared_ptr<const Law> make_full_stick() {
-  return std::make_shared<FullStick>();
+std::shared_ptr<const Law> make_full_stick(Kind own) {
+  return std::make_shared<FullStick>(own);
 }
 
 }  // namespace emc::contact

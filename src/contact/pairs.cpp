@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "emcontact/error.hpp"
 #include "kernels/facet.hpp"
@@ -119,7 +120,17 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     const std::string where = file + ": Contact/" + name;
     Pair p;
     p.name = name;
-    p.kind = c.get<std::string>("type") == "frictionless" ? Kind::frictionless : Kind::full_stick;
+    const std::string type = c.get<std::string>("type");
+    p.kind = type == "frictionless" ? Kind::frictionless
+             : type == "coulomb"    ? Kind::coulomb
+                                    : Kind::full_stick;
+    p.mu = c.get<double>("friction coefficient");
+    if (p.mu != 0 && p.kind != Kind::coulomb) {
+      char mu[32];
+      std::snprintf(mu, sizeof mu, "%g", p.mu);
+      throw InputError(where + "/friction coefficient: " + mu +
+                       " is only used with type = coulomb (type is \"" + type + "\")");
+    }
     p.close_gap = c.get<bool>("close gap");
     const SurfaceRef s = parse_ref(model, c.get<std::string>("slave"), where + "/slave");
     const SurfaceRef m = parse_ref(model, c.get<std::string>("master"), where + "/master");

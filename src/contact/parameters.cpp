@@ -21,12 +21,17 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
           any_string());
   pl->set("type", std::string("full stick"),
           "Contact condition on an active slave node: full stick (it sticks to its point of the "
-          "master facet) or frictionless (it slides freely on the master; only its normal gap "
-          "is constrained).",
-          string_choice("type", {"full stick", "frictionless"},
+          "master facet), frictionless (it slides freely on the master; only its normal gap "
+          "is constrained) or coulomb (it sticks while the tangential force is at most the "
+          "friction coefficient times the normal force, and slides otherwise against a "
+          "tangential force of that size; docs/THEORY.md §11).",
+          string_choice("type", {"full stick", "frictionless", "coulomb"},
                         {"an active slave node sticks to its point of the master facet",
                          "an active slave node slides freely on the master facet (only its "
-                         "normal gap is constrained)"}));
+                         "normal gap is constrained)",
+                         "Coulomb friction: an active slave node sticks (as full stick) while "
+                         "|f_T| <= mu f_N and slides (as frictionless, with the tangential force "
+                         "mu f_N against its slip) otherwise"}));
   pl->set("max penetration", 0.0,
           "Largest penetration [m] at which a slave node is caught by a master facet (a node "
           "deeper than this, e.g. behind a thin master, is not activated); 0: automatic, half "
@@ -39,6 +44,11 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
           "closure takes (or gives) is restored by a velocity update along the contact "
           "normals that keeps L and J, so energy stays conserved. false: an activated node "
           "keeps its gap at activation (§6.5).");
+  pl->set("friction coefficient", 0.0,
+          "Coulomb friction coefficient mu >= 0 of the pair (type = coulomb only; any other "
+          "type refuses a nonzero value). mu = 0 slides as frictionless; a large mu sticks as "
+          "full stick. The work of friction is the monitors' dissipated column.",
+          double_at_least(0.0));
   return pl;
 }
 

@@ -61,8 +61,18 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
   set_dummy_values(dummy_diag);
 }
 
-void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X) {
+void Elimination::set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X,
+                                    const std::vector<PRow>& pl_rows) {
   pt_rows_ = pt_rows;
+  left_rows_ = rows_;
+  if (!pl_rows.empty()) {  // docs/THEORY.md §11.3: the left factor differs from P in these rows
+    std::map<GO, const PRow*> by_row;
+    for (const auto& r : pl_rows) by_row[r.row] = &r;
+    for (auto& r : left_rows_) {
+      auto it = by_row.find(r.row);
+      if (it != by_row.end()) r = *it->second;
+    }
+  }
   X_ = X;
   linearised_ = true;
 }
@@ -86,7 +96,8 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
 RCP<Matrix> Elimination::reduce_matrix(const RCP<Matrix>& A) const {
   if (identity_) return A;
   if (masked_ && !linearised_) return masked_reduction_.apply(*A);
-  structured_reduction_.set(keep_, fixed_, rows_, pt_rows_, X_, diag_, *owned_->getComm());
+  structured_reduction_.set(keep_, fixed_, linearised_ ? left_rows_ : rows_, pt_rows_, X_, diag_,
+                            *owned_->getComm());
   return structured_reduction_.apply(*A);
 }
 

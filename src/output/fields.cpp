@@ -226,6 +226,7 @@ void FieldWriter::write(const FieldFrame& f) {
   const std::vector<double> zeros(num_nodes_, 0.0);
   const auto& status = f.contact_status.size() == n ? f.contact_status : zeros;
   const auto& normal = f.normal_force.size() == n ? f.normal_force : zeros;
+  const auto& slip = f.slip.size() == n ? f.slip : zeros;
   write_hdf5_atomically(
       dir_ + "/" + frame_file_name(f.step),
       {{"/displacement", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.displacement.data()},
@@ -233,6 +234,7 @@ void FieldWriter::write(const FieldFrame& f) {
        {"/von_mises", {e}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.von_mises.data()},
        {"/contact_status", {n}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, status.data()},
        {"/normal_force", {n}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, normal.data()},
+       {"/slip", {n}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, slip.data()},
        {"/time", {}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &f.time},
        {"/step", {}, H5T_STD_I64LE, H5T_NATIVE_LLONG, &step}});
   // A step written again (e.g. the final frame) replaces its entry instead of duplicating it.
@@ -298,6 +300,7 @@ void FieldWriter::write_xdmf() const {
                    data_item(n, "Float", 8, file + ":/contact_status", in));
     x += attribute("normal_force", "Scalar", "Node",
                    data_item(n, "Float", 8, file + ":/normal_force", in));
+    x += attribute("slip", "Scalar", "Node", data_item(n, "Float", 8, file + ":/slip", in));
     x += body;
     x += "      </Grid>\n";
   }

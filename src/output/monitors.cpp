@@ -39,6 +39,9 @@ constexpr const char* kColumns[] = {"step",
                                     "contact_resolves",
                                     "normal_force_min"};
 constexpr std::size_t kNumColumns = sizeof(kColumns) / sizeof(kColumns[0]);
+/// Written after the fixed columns; files of earlier versions (golds, runs to restart) lack it
+/// and read as 0 (docs/THEORY.md §11.2).
+constexpr const char* kDissipated = "dissipated";
 
 /// Appends `v` as printf("%.17g") would in the C locale (std::to_chars is specified so),
 /// which round-trips every double exactly.
@@ -89,7 +92,7 @@ T parse_number(const std::string& s) {
 }
 
 /// Fills a row from the first kNumColumns fields (already checked to be there).
-MonitorRow parse_row(const std::vector<std::string>& f) {
+MonitorRow parse_row(const std::vector<std::string>& f, bool dissipated) {
   MonitorRow r;
   std::size_t i = 0;
   r.step = parse_number<long>(f[i++]);
@@ -109,6 +112,7 @@ MonitorRow parse_row(const std::vector<std::string>& f) {
   r.gap_max = parse_number<double>(f[i++]);
   r.contact_resolves = parse_number<int>(f[i++]);
   r.normal_force_min = parse_number<double>(f[i++]);
+  if (dissipated) r.dissipated = parse_number<double>(f[i++]);
   return r;
 }
 
@@ -117,9 +121,11 @@ void chomp(std::string& line) {
   if (!line.empty() && line.back() == '\r') line.pop_back();
 }
 
-/// Checks that the header starts with the fixed columns; returns its number of columns.
-std::size_t check_header(const std::string& path, const std::string& line) {
+/// Checks that the header starts with the fixed columns; returns its number of columns and
+/// whether the dissipated column follows them.
+std::size_t check_header(const std::string& path, const std::string& line, bool& dissipated) {
   const std::vector<std::string> names = split_csv(line);
+  dissipated = names.size() > kNumColumns && names[kNumColumns] == kDissipated;
   bool ok = names.size() >= kNumColumns;
   for (std::size_t i = 0; ok && i < kNumColumns; ++i) ok = names[i] == kColumns[i];
   if (!ok) {
@@ -137,7 +143,7 @@ std::string monitor_header() {
     if (i > 0) h += ',';
     h += kColumns[i];
   }
-  return h;
+  return h + ',' + kDissipated;
 }
 
 std::string format_row(const MonitorRow& r) {
@@ -165,6 +171,8 @@ std::string format_row(const MonitorRow& r) {
   append_integer(s, r.contact_resolves);
   s += ',';
   append_double(s, r.normal_force_min);
+  s += ',';
+  append_double(s, r.dissipated);
   return s;
 }
 
@@ -197,7 +205,8 @@ std::vector<MonitorRow> read_monitors(const std::string& path) {
   std::string line;
   if (!std::getline(in, line)) throw Error(path + ":1: empty monitors file");
   chomp(line);
-  const std::size_t num_columns = check_header(path, line);
+  bool dissipated = false;
+  const std::size_t num_columns = check_header(path, line, dissipated);
   std::vector<MonitorRow> rows;
   for (long line_no = 2; std::getline(in, line); ++line_no) {
     chomp(line);
@@ -209,7 +218,7 @@ std::vector<MonitorRow> read_monitors(const std::string& path) {
                   std::to_string(fields.size()));
     }
     try {
-      rows.push_back(parse_row(fields));
+      rows.push_back(parse_row(fields, dissipated));
     } catch (const std::invalid_argument& e) {
       throw Error(where + e.what());
     }

@@ -137,6 +137,11 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       res.converged = true;
       return res;
     }
+    if (hooks_ && hooks_->abandon(it, r, r0)) {
+      res.failure = "a sliding contact node slid against its direction at Newton iterate " +
+                    std::to_string(it);
+      return res;
+    }
     if (it >= opt_.max_iterations) {
       char buf[160];
       std::snprintf(buf, sizeof buf,

@@ -85,6 +85,8 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   s_.contact_nodes = std::move(settled.nodes);
   s_.contact_status = std::move(settled.status);
   s_.contact_force = std::move(settled.force);
+  s_.contact_slip = std::move(settled.slip);
+  dissipated_ = settled.dissipated;
   return true;
 }
 
@@ -150,6 +152,10 @@ StepReport Stepper::advance() {
       s_.t += h;
       ++s_.step;
       rep.dt = h;
+      if (loop_) {  // docs/THEORY.md §11.2: D_{n+1} = D_n + the accepted step's friction work
+        rep.dissipated = dissipated_;
+        s_.dissipated += dissipated_;
+      }
       if (s_.dt < dt_ && ++s_.good_steps >= grow_after_) {
         s_.dt = std::min(2 * s_.dt, dt_);
         s_.good_steps = 0;

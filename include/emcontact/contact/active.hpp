@@ -19,8 +19,22 @@ struct Active {
   double xi[2] = {0, 0};
   bool off = false;  ///< frictionless: outside every facet by more than tol_f (released at the end)
   bool keep_gap = false;  ///< not closed although its pair closes gaps (re-activated, §7.2)
+  // Coulomb friction (docs/THEORY.md §11)
+  bool slip = false;          ///< slides (frictionless constraint plus friction) or sticks
+  bool pinned = false;        ///< returned to stick in this step: stays stick to its end (§11.4)
+  bool slid = false;          ///< slid at t_n (the state the step started with)
+  double dir[3] = {0, 0, 0};  ///< the slip direction of the last solve (or the trial's)
   bool operator<(const Active& o) const { return slave < o.slave; }
 };
+
+/// Whether entry a of pair p slides under the frictionless constraint of §5 (frictionless, or
+/// Coulomb in slip) or sticks under the full-stick constraint of §4 (docs/THEORY.md §11).
+inline bool slides(const Pair& p, const Active& a) {
+  return p.kind == Kind::frictionless || (p.kind == Kind::coulomb && a.slip);
+}
+inline bool sticks(const Pair& p, const Active& a) {
+  return !slides(p, a);
+}
 
 /// Every rank's active entries by slave node (replicated), to compose chains (§3): a master
 /// node that is itself an active slave elsewhere contributes its own row of P.

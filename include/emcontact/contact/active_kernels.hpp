@@ -7,6 +7,7 @@
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/nodes.hpp"
 #include "emcontact/contact/search.hpp"
+#include "kernels/coulomb.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/frictionless.hpp"
 
@@ -20,7 +21,8 @@ struct ActiveRef {
   double xi[2] = {0, 0};      ///< frozen (stick) or current (frictionless) point on the facet
   double edge = 0;            ///< the pair's mean facet size (docs/THEORY.md §7.2 round-off)
   int closes = 0;             ///< the gap is closed (docs/THEORY.md §7.2)
-  int frictionless = 0;       ///< the pair's law (§4 or §5)
+  int frictionless = 0;       ///< slides under §5's constraint (frictionless, Coulomb in slip)
+  double mu = 0;              ///< Coulomb friction coefficient (docs/THEORY.md §11)
 };
 
 using Refs = Kokkos::View<ActiveRef*, ExecSpace>;
@@ -81,6 +83,18 @@ void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
 /// §5 blocks P, Pt, X of every frictionless entry at (x0, x1), g the contactless residual.
 void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
                          Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks);
+
+/// docs/THEORY.md §11.3: the friction force and its derivative terms of every sliding Coulomb
+/// entry (blocks: its frictionless blocks at the same state).
+void coulomb_slips(Refs refs, Positions x0, Positions x1, OwnedValues g,
+                   Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks,
+                   Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips);
+/// docs/THEORY.md §11.4: f_N, the trial tangential force, the slip and xi at t_n per entry.
+void coulomb_states(Refs refs, Positions x0, Positions x1, OwnedValues g,
+                    Kokkos::View<kernels::CoulombState*, ExecSpace> states);
+
+/// §4.1: the CPP of x_{s,n} on the facet at t_n per entry (unchanged xi if degenerate).
+void start_points(Refs refs, Positions x0, Kokkos::View<double* [2], ExecSpace> xi);
 
 /// docs/THEORY.md §7.4 per closed entry, with F its transmitted force: the work
 /// F . (dx_s - N dx_m) and its round-off (sums), and the impulse weight w n at n+1 and the

@@ -20,6 +20,8 @@ struct SettledSet {
   /// f_N and whether it stays active (1) or is released at the end of the step (2).
   std::vector<int> nodes, status;
   std::vector<double> force;
+  std::vector<int> slip;  ///< per entry of `nodes`: 1 sliding (Coulomb, docs/THEORY.md §11)
+  double dissipated = 0;  ///< the energy friction dissipated over the step (global)
   StepContactStats stats;
   ClosureWork closure;  ///< docs/THEORY.md §7.4 (with `close gap` pairs)
 };

@@ -22,16 +22,17 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   const ActiveIndex& index() const { return index_; }
 
   void start(const Vector& u0, Vector& u1) override;
-  void before_reduce(const Vector& u0, const Vector& u1, const Vector& g, const Matrix& A) override;
+  void before_reduce(const Vector& u0, const Vector& u1, Vector& g, const Matrix& A) override;
   void after_update(const Vector& u0, Vector& u1) override;
   double residual_roundoff() const override { return roundoff_; }
+  bool abandon(int iteration, double r, double r0) override;
 
  private:
   const Contact& contact_;
   linalg::Elimination& elim_;
   std::vector<GO> fixed_;
   std::vector<Active>* trial_ = nullptr;
-  std::vector<std::array<double, 4>> applied_;  ///< (slave, facet, xi) P was built for
+  std::vector<std::array<double, 5>> applied_;  ///< (slave, facet, xi, slip) P was built for
   std::vector<GO> dummies_;
   std::vector<const Law*> present_;  ///< laws with an entry on some rank
   bool iterate_dependent_ = false;   ///< some present law's rows follow the iterate
@@ -40,6 +41,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   double roundoff_ = 0;              ///< LawRows::roundoff at the last iterate
 
   LawState state(Positions x1) const;
+  void subtract_loads(const std::vector<std::pair<GO, double>>& load, Vector& g) const;
 };
 
 }  // namespace emc::contact

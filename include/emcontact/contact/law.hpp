@@ -31,6 +31,10 @@ struct LawRows {
   std::vector<linalg::Entry> X;             ///< the variation of P^T
   std::vector<std::pair<GO, double>> beta;  ///< (dummy dof, beta) from the Newton matrix
   std::vector<GO> dummies;  ///< dummies whose beta follows A while P is kept (eq. 44)
+  /// Coulomb friction (docs/THEORY.md §11): rows of the left factor that differ from P's
+  /// (Pl^T A Pt), and the friction forces (dof, value), subtracted from the residual g.
+  std::vector<linalg::PRow> pl_rows;
+  std::vector<std::pair<GO, double>> load;
   /// Rows that follow the iterate: sum over my slaves of (beta * position round-off)^2, the
   /// residual that re-projecting the slaves leaves at every iterate (Newton's floor).
   double roundoff = 0;
@@ -57,8 +61,27 @@ class Law {
   virtual void after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const = 0;
   /// §6.4: whether an entry with normal force fN is released at the end of the solve.
   virtual bool releases(const Active& a, double fN) const = 0;
+  /// docs/THEORY.md §11.4: after a converged solve (g its residual), the law's entries of
+  /// `active` that are kept may change their state (stick/slip); returns how many did (local).
+  virtual int settle(const LawState&, std::vector<Active>&, const Vector&) const { return 0; }
+  /// §6.3: the state (stick/slip) of the law's entries `fresh` activated on the solve (g).
+  virtual void activate(const LawState&, std::vector<Active>&, const Vector&) const {}
+  /// Whether one of the law's entries slides against its direction at the last iterate.
+  virtual bool stalls() const { return false; }
+  /// Whether the law has Coulomb entries sliding at the last iterate.
+  virtual bool slides() const { return false; }
+  /// After a failed solve: entries whose state is to blame change it; returns how many (local).
+  virtual int after_failure(const LawState&, std::vector<Active>&) const { return 0; }
+  /// The energy the law's entries dissipated over the step at the solution (local sum).
+  virtual double dissipation(const LawState&, const std::vector<Active>&, const Vector&) const {
+    return 0;
+  }
 };
 
 std::shared_ptr<const Law> make_law(Kind kind);
+/// The constraints of §4 and §5 on the entries of pairs of type `own` that stick (§4) or slide
+/// (§5; with Coulomb friction for own = coulomb, docs/THEORY.md §11).
+std::shared_ptr<const Law> make_full_stick(Kind own = Kind::full_stick);
+std::shared_ptr<const Law> make_frictionless(Kind own = Kind::frictionless);
 
 }  // namespace emc::contact

@@ -12,11 +12,12 @@
 
 namespace emc::contact {
 
-enum class Kind { full_stick, frictionless };
+enum class Kind { full_stick, frictionless, coulomb };
 
 struct Pair {
   std::string name;
   Kind kind = Kind::full_stick;
+  double mu = 0;            ///< Coulomb friction coefficient (docs/THEORY.md §11)
   double dmax = 0;          ///< activation only for -dmax < g_N < 0 (§6.3)
   bool close_gap = false;   ///< active nodes end every step on the master (docs/THEORY.md §7)
   std::vector<int> slaves;  ///< global node ids, sorted

@@ -21,13 +21,18 @@ class ConstraintHooks {
   /// Before the first residual: the start iterate u1 may be projected.
   virtual void start(const Vector& u0, Vector& u1) = 0;
   /// After assembly of A and g at the iterate u1, before P^T g and P^T A Pt + X + D.
-  virtual void before_reduce(const Vector& u0, const Vector& u1, const Vector& g,
-                             const Matrix& A) = 0;
+  /// g may be changed: forces the constraints add (Coulomb friction, docs/THEORY.md §11) are
+  /// subtracted from it, so that P^T g is the reduced residual.
+  virtual void before_reduce(const Vector& u0, const Vector& u1, Vector& g, const Matrix& A) = 0;
   /// After u1 += P dq.
   virtual void after_update(const Vector& u0, Vector& u1) = 0;
   /// This rank's share (a sum of squares) of the reduced residual that restoring the constraints
   /// leaves at every iterate (the projection's round-off; Newton's floor, docs/THEORY.md §1.6).
   virtual double residual_roundoff() const { return 0; }
+  /// Whether the solve is to be given up at this (unconverged) iterate with residual r (r0 at
+  /// the start): a constraint state it assumed cannot hold (Coulomb slip with no sliding
+  /// solution, docs/THEORY.md §11.4). Collective.
+  virtual bool abandon(int /*iteration*/, double /*r*/, double /*r0*/) { return false; }
 };
 
 class Elimination {
@@ -46,7 +51,10 @@ class Elimination {
 
   /// The exact linearisation of frictionless contact (§5): the right factor Pt (rows that differ
   /// from P; empty: Pt = P) and the variation X of P^T. Reset by set_constraints.
-  void set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X);
+  /// pl_rows (Coulomb friction, docs/THEORY.md §11.3): rows of the left factor that differ from
+  /// P's (the same columns): the reduction is then Pl^T A Pt + X + D.
+  void set_linearisation(const std::vector<PRow>& pt_rows, const std::vector<Entry>& X,
+                         const std::vector<PRow>& pl_rows = {});
 
   /// True when P is the identity on every rank (nothing constrained): reduce/expand copy.
   bool identity() const { return identity_; }
@@ -69,6 +77,7 @@ class Elimination {
   std::vector<std::pair<GO, double>> diag_;  ///< D's entries (owned dofs)
   std::vector<GO> fixed_;
   std::vector<PRow> rows_, pt_rows_;  ///< P's special rows; Pt's that differ
+  std::vector<PRow> left_rows_;       ///< the left factor's special rows (P's unless Pl is set)
   std::vector<Entry> X_;
   bool linearised_ = false;  ///< set_linearisation was called (on some rank)
   Teuchos::RCP<Matrix> build_P(const std::vector<PRow>& rows) const;

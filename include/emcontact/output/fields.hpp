@@ -15,6 +15,7 @@ struct FieldFrame {
   std::vector<double> von_mises;       ///< 1 per tet (Cauchy stress at t_n)
   std::vector<double> contact_status;  ///< 1 per node: 1 active slave, 0 otherwise (or empty)
   std::vector<double> normal_force;    ///< 1 per node: f_N of an active slave (or empty)
+  std::vector<double> slip;            ///< 1 per node: 1 sliding (Coulomb), 0 otherwise
 };
 
 class FieldWriter {

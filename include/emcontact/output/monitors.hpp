@@ -20,12 +20,14 @@ struct MonitorRow {
   double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active slave nodes (0 if none)
   int contact_resolves = 0;         ///< extra solves of the step for activation/release (§6)
   double normal_force_min =
-      0;  ///< smallest f_N of the active nodes at the accepted solve (0 if none)
+      0;                  ///< smallest f_N of the active nodes at the accepted solve (0 if none)
+  double dissipated = 0;  ///< energy dissipated by friction since t = 0 (docs/THEORY.md §11.2)
 };
 
 /// The fixed header: step,time,kinetic,elastic,potential,total,Lx,Ly,Lz,Jx,Jy,Jz,
 /// active_contacts,newton_iterations, then
-/// dt,linear_iterations,com_x,com_y,com_z,gap_min,gap_max,contact_resolves,normal_force_min.
+/// dt,linear_iterations,com_x,com_y,com_z,gap_min,gap_max,contact_resolves,normal_force_min,
+/// dissipated.
 std::string monitor_header();
 std::string format_row(const MonitorRow& r);  ///< %.17g for doubles: round-trips exactly
 

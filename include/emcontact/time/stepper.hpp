@@ -30,6 +30,8 @@ struct State {
   /// of the step (2: pinned in tension, or off its master; §6.4-§6.5).
   std::vector<int> contact_nodes, contact_status;
   std::vector<double> contact_force;
+  std::vector<int> contact_slip;  ///< per contact_nodes: 1 sliding (Coulomb, docs/THEORY.md §11)
+  double dissipated = 0;          ///< energy dissipated by friction since t = 0 (§11.2)
   Teuchos::RCP<Vector> last_increment;  ///< u_n - u_{n-1}, for the predictor (null at start)
   double last_h = 0;                    ///< the step size of that increment
   int last_iterations = 0;              ///< Newton iterations of the last accepted solve
@@ -42,6 +44,7 @@ struct StepReport {
   int linear_iterations = 0;
   int cuts = 0;
   double closure_energy = 0;  ///< energy given back by the velocity update (docs/THEORY.md §7.4)
+  double dissipated = 0;      ///< energy friction dissipated in the step (docs/THEORY.md §11.2)
   std::string last_failure;
   contact::StepContactStats contact;
 };
@@ -71,6 +74,7 @@ class Stepper {
   std::unique_ptr<EnergyRestoration> restoration_;  ///< with `close gap` pairs only
   Teuchos::RCP<Vector> closure_p_;                  ///< the step's impulse direction (§7.4)
   contact::ClosureWork closure_work_;               ///< the step's contact work W_c (§7.4)
+  double dissipated_ = 0;                           ///< the solved step's friction work (§11)
 
   void start_iterate(double h, bool no_contact, Vector& u1) const;
   void check_step_size(double h) const;

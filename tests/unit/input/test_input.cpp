@@ -392,7 +392,7 @@ TEST_F(InputTest, RigidSlaveRefused) {
 TEST_F(InputTest, BadContactTypeAndPenetrationRefused) {
   expect_message(error(with_pair(kBallOnFloor + param("type", "sticky"))),
                  {"in.xml: parameter \"Contact/drop/type\"", "\"sticky\"",
-                  "allowed: one of \"full stick\", \"frictionless\""});
+                  "allowed: one of \"full stick\", \"frictionless\", \"coulomb\""});
   expect_message(error(with_pair(kBallOnFloor + param("max penetration", "-0.001", "double"))),
                  {"in.xml: parameter \"Contact/drop/max penetration\"", "-0.001", "out of range",
                   "allowed: a double >= 0"});
@@ -613,7 +613,8 @@ TEST(InputDocs, TablesListEveryParameter) {
         "| `progress` | bool | `true` | `true`, `false` |", "### `Bodies/<body>/Mesh`",
         "### `Dirichlet/<condition>`", "### `Solver/Linear`", "```xml", "## Contact",
         "### `Contact/<pair>`", "| `slave` | string | `\"\"` | any string |",
-        "| `type` | string | `full stick` | `full stick`, `frictionless` |",
+        "| `type` | string | `full stick` | `full stick`, `frictionless`, `coulomb` |",
+        "| `friction coefficient` | double | `0` | >= 0 |",
         "| `max penetration` | double | `0` | >= 0 |", "| `half width` | double | `1` | > 0 |",
         "`spherical shell`, `plane`, `rectangle`, `file`"})
     EXPECT_NE(md.find(row), std::string::npos) << row;

@@ -138,7 +138,7 @@ TEST(FieldWriter, FramesReadBackAndXdmfReferencesEveryFrame) {
   EXPECT_EQ(count(xdmf, "</Grid>"), steps.size() + 1);
   EXPECT_EQ(count(xdmf, "<Time "), steps.size());
   EXPECT_EQ(count(xdmf, "<DataItem "), count(xdmf, "</DataItem>"));
-  EXPECT_EQ(count(xdmf, "<Attribute "), 6 * steps.size());  // + contact_status, normal_force
+  EXPECT_EQ(count(xdmf, "<Attribute "), 7 * steps.size());  // + contact_status, normal_force, slip
   EXPECT_EQ(count(xdmf, "TopologyType=\"Tetrahedron\""), steps.size());
   EXPECT_EQ(count(xdmf, "GeometryType=\"XYZ\""), steps.size());
   EXPECT_EQ(count(xdmf, "AttributeType=\"Vector\" Center=\"Node\""), 2 * steps.size());

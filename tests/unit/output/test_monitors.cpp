@@ -51,16 +51,17 @@ MonitorRow make_row(long step, const std::vector<double>& v, std::size_t offset)
 
 /// Every double field of a row, in column order.
 std::vector<double> doubles_of(const MonitorRow& r) {
-  return {r.time,   r.kinetic, r.elastic, r.potential, r.total,   r.L[0],
-          r.L[1],   r.L[2],    r.J[0],    r.J[1],      r.J[2],    r.dt,
-          r.com[0], r.com[1],  r.com[2],  r.gap_min,   r.gap_max, r.normal_force_min};
+  return {r.time,      r.kinetic, r.elastic, r.potential, r.total,   r.L[0],
+          r.L[1],      r.L[2],    r.J[0],    r.J[1],      r.J[2],    r.dt,
+          r.com[0],    r.com[1],  r.com[2],  r.gap_min,   r.gap_max, r.normal_force_min,
+          r.dissipated};
 }
 
 TEST(Monitors, HeaderIsExact) {
   EXPECT_EQ(monitor_header(),
             "step,time,kinetic,elastic,potential,total,Lx,Ly,Lz,Jx,Jy,Jz,active_contacts,"
             "newton_iterations,dt,linear_iterations,com_x,com_y,com_z,gap_min,gap_max,"
-            "contact_resolves,normal_force_min");
+            "contact_resolves,normal_force_min,dissipated");
 }
 
 TEST(Monitors, FormatRowUsesPercent17g) {
@@ -71,7 +72,7 @@ TEST(Monitors, FormatRowUsesPercent17g) {
   r.L = {1.0 / 3.0, 1e-300, 2.0};
   EXPECT_EQ(
       format_row(r),
-      "3,0.10000000000000001,-0,0,0,0,0.33333333333333331,1e-300,2,0,0,0,0,0,0,0,0,0,0,0,0,0,0");
+      "3,0.10000000000000001,-0,0,0,0,0.33333333333333331,1e-300,2,0,0,0,0,0,0,0,0,0,0,0,0,0,0,0");
   // Same text as printf("%.17g") for awkward values.
   for (double v : {0.1, 1e-300, -0.0, 1.0 / 3.0, 5e-324, 1.7976931348623157e308, 1e16, 123.5,
                    -2.5e-7, 1e21, 0.0001, std::numeric_limits<double>::infinity()}) {

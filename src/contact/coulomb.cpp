@@ -1,0 +1,176 @@
+// Coulomb friction (docs/THEORY.md §11): an active slave sticks under the full-stick
+// constraint of §4 or slides under the frictionless constraint of §5 with the tangential force
+// mu |f_N| against its slip. The return map is done in the active-set loop of §6 (§11.4): after
+// a converged solve a sticking entry whose trial tangential force leaves the cone slides, a
+// sliding entry whose slip vanished or turned against its direction sticks (and stays stuck
+// to the end of the step), and the step is solved again.
+#include <Teuchos_TimeMonitor.hpp>
+#include <cmath>
+
+#include "emcontact/contact/contact.hpp"
+#include "emcontact/contact/law.hpp"
+
+namespace emc::contact {
+
+namespace {
+
+class Coulomb final : public Law {
+ public:
+  Kind kind() const override { return Kind::coulomb; }
+  // a new entry sticks first (§11.4): xi as full stick's
+  double activation_weight() const override { return 0.0; }
+  bool clamps(const Pair& p) const override { return !p.close_gap; }
+  bool iterate_dependent() const override { return true; }
+  void rows(const LawState& s, const std::vector<Active>& active, const Vector* g, const Matrix* A,
+            LawRows& out) const override {
+    stick_->rows(s, active, g, A, out);
+    slip_->rows(s, active, g, A, out);
+  }
+  void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
+    stick_->start(s, active, u1);
+    slip_->start(s, active, u1);
+  }
+  void after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
+    slip_->after_update(s, active, u1);
+  }
+  bool releases(const Active& a, double fN) const override { return fN < 0 || (a.slip && a.off); }
+  int settle(const LawState& s, std::vector<Active>& active, const Vector& g) const override;
+  int after_failure(const LawState& s, std::vector<Active>& active) const override;
+  void activate(const LawState& s, std::vector<Active>& fresh, const Vector& g) const override;
+  bool stalls() const override { return slip_->stalls(); }
+  bool slides() const override { return slip_->slides(); }
+  double dissipation(const LawState& s, const std::vector<Active>& active,
+                     const Vector& g) const override;
+
+ private:
+  std::shared_ptr<const Law> stick_ = make_full_stick(Kind::coulomb);
+  std::shared_ptr<const Law> slip_ = make_frictionless(Kind::coulomb);
+};
+
+/// My Coulomb entries of `active` (their index into it in `where`).
+std::vector<Active> mine(const Contact& contact, const std::vector<Active>& active,
+                         std::vector<std::size_t>& where) {
+  std::vector<Active> out;
+  for (std::size_t k = 0; k < active.size(); ++k)
+    if (contact.pairs()[active[k].pair].kind == Kind::coulomb) {
+      out.push_back(active[k]);
+      where.push_back(k);
+    }
+  return out;
+}
+
+std::vector<kernels::CoulombState> states(const LawState& s, const std::vector<Active>& entries,
+                                          const Vector& g) {
+  Kokkos::View<kernels::CoulombState*, ExecSpace> st("emc::coulomb_states", entries.size());
+  coulomb_states(s.contact.refs(entries), s.x0, s.x1,
+                 g.getLocalViewDevice(Tpetra::Access::ReadOnly), st);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), st);
+  return std::vector<kernels::CoulombState>(h.data(), h.data() + h.extent(0));
+}
+
+/// A sliding entry returns to stick for the rest of the step at the CPP of x_{s,n} on its facet
+/// at t_n (§4.1: the frozen offset is then normal).
+void stick_at_start(const LawState& s, std::vector<Active>& active,
+                    const std::vector<std::size_t>& which) {
+  std::vector<Active> entries;
+  for (std::size_t k : which) entries.push_back(active[k]);
+  Kokkos::View<double* [2], ExecSpace> xi("emc::coulomb_xi0", entries.size());
+  start_points(s.contact.refs(entries), s.x0, xi);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xi);
+  for (std::size_t j = 0; j < which.size(); ++j) {
+    Active& a = active[which[j]];
+    a.slip = false;
+    a.pinned = true;
+    a.xi[0] = h(j, 0);
+    a.xi[1] = h(j, 1);
+  }
+}
+
+// docs/THEORY.md §11.4: the return map on the converged solve.
+int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector& g) const {
+  std::vector<std::size_t> where;
+  const auto entries = mine(s.contact, active, where);
+  if (entries.empty()) return 0;
+  const auto st = states(s, entries, g);
+  int changed = 0;
+  std::vector<std::size_t> back;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    Active& a = active[where[k]];
+    const double mu = s.contact.pairs()[a.pair].mu;
+    const kernels::CoulombState& c = st[k];
+    if (!a.slip) {
+      const double ft =
+          std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] + c.trial[2] * c.trial[2]);
+      // out of the cone (beyond its round-off) and not returned in this step: slide
+      if (a.pinned || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9))) continue;
+      a.slip = true;
+      for (int i = 0; i < 3; ++i) a.dir[i] = -c.trial[i] / ft;  // the slip the force resists
+      ++changed;
+      continue;
+    }
+    const double along = c.sT[0] * a.dir[0] + c.sT[1] * a.dir[1] + c.sT[2] * a.dir[2];
+    // the slip vanished (below a few ulps of the facet's size) or turned back: stick
+    if (mu > 0 &&
+        (c.slip <= 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge || along < 0)) {
+      back.push_back(where[k]);
+      ++changed;
+      continue;
+    }
+    if (c.slip > 0)
+      for (int i = 0; i < 3; ++i) a.dir[i] = c.sT[i] / c.slip;
+  }
+  if (!back.empty()) stick_at_start(s, active, back);
+  return changed;
+}
+
+// docs/THEORY.md §11.4: an entry activated while moving along its facet over the step starts in
+// slip in that direction (a stick solve first would stop it for a step, and the forces of that
+// step would release its neighbours); one at rest sticks.
+void Coulomb::activate(const LawState& s, std::vector<Active>& fresh, const Vector& g) const {
+  std::vector<std::size_t> where;
+  const auto entries = mine(s.contact, fresh, where);
+  if (entries.empty()) return;
+  const auto st = states(s, entries, g);
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    Active& a = fresh[where[k]];
+    if (!(st[k].slip > 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge)) continue;
+    a.slip = true;
+    for (int i = 0; i < 3; ++i) a.dir[i] = st[k].sT[i] / st[k].slip;
+  }
+}
+
+int Coulomb::after_failure(const LawState& s, std::vector<Active>& active) const {
+  std::vector<Active> before = active;
+  slip_->after_failure(s, active);
+  std::vector<std::size_t> back;
+  for (std::size_t k = 0; k < active.size(); ++k)
+    if (before[k].slip && !active[k].slip) {
+      active[k] = before[k];
+      back.push_back(k);
+    }
+  if (!back.empty()) stick_at_start(s, active, back);
+  return static_cast<int>(back.size());
+}
+
+// docs/THEORY.md §11.2: D_{n+1} - D_n = sum over the sliding entries of mu |f_N| |s_T|, the
+// quantities of the friction force at the solution.
+double Coulomb::dissipation(const LawState& s, const std::vector<Active>& active,
+                            const Vector& g) const {
+  std::vector<std::size_t> where;
+  const auto entries = mine(s.contact, active, where);
+  if (entries.empty()) return 0;
+  const auto st = states(s, entries, g);
+  double d = 0;
+  for (std::size_t k = 0; k < entries.size(); ++k)
+    if (entries[k].slip)
+      d += s.contact.pairs()[entries[k].pair].mu * std::fabs(st[k].fN) * st[k].slip;
+  return d;
+}
+
+}  // namespace
+
+std::shared_ptr<const Law> make_coulomb() {
+  return std::make_shared<Coulomb>();
+}
+
+}  // namespace emc::contact

@@ -1,0 +1,385 @@
+// Coulomb friction of one sliding slave on one master facet (docs/THEORY.md §11), without MPI or
+// Tpetra, on the dense 4-node system of test_frictionless (slave = node 0, masters = nodes 1..3,
+// synthetic residual g(u) = A0 (u - u_n) + b + a cubic term with its exact Jacobian). The
+// reduced residual along the update map of §5 is R(q) = P^T (g - f), f the friction pair
+// (f_T on the slave, -N_i f_T on the masters, f_T = -mu |g_s . n| s_T / |s_T|); the kernel's
+// matrix Pl^T A Pt + X + X_f must be its Jacobian (f_N's dependence on the displacements
+// included), and the force pair's work over the step is -mu |f_N| |s_T|.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "kernels/coulomb.hpp"
+
+namespace k = emc::kernels;
+
+namespace {
+
+constexpr int kN = 12;
+using Vec = std::array<double, kN>;
+using Mat = std::array<Vec, kN>;
+
+/// The 11 non-dummy reduced unknowns: dxi, deta and the 9 master dofs.
+const std::vector<int> kRed = {0, 1, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+
+Mat zeros() {
+  Mat A{};
+  for (auto& r : A) r.fill(0.0);
+  return A;
+}
+
+Mat identity() {
+  Mat A = zeros();
+  for (int i = 0; i < kN; ++i) A[i][i] = 1;
+  return A;
+}
+
+Mat mul(const Mat& A, const Mat& B) {
+  Mat C = zeros();
+  for (int i = 0; i < kN; ++i)
+    for (int l = 0; l < kN; ++l)
+      for (int j = 0; j < kN; ++j) C[i][j] += A[i][l] * B[l][j];
+  return C;
+}
+
+Mat transpose(const Mat& A) {
+  Mat T = zeros();
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) T[i][j] = A[j][i];
+  return T;
+}
+
+Vec mulv(const Mat& A, const Vec& x) {
+  Vec y{};
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) y[i] += A[i][j] * x[j];
+  return y;
+}
+
+double norm(const Vec& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return std::sqrt(s);
+}
+
+/// ||A - B||_F / ||B||_F over rows x cols.
+double rel_diff(const Mat& A, const Mat& B, const std::vector<int>& rows,
+                const std::vector<int>& cols) {
+  double d = 0, s = 0;
+  for (int i : rows)
+    for (int j : cols) {
+      d += (A[i][j] - B[i][j]) * (A[i][j] - B[i][j]);
+      s += B[i][j] * B[i][j];
+    }
+  return std::sqrt(d / s);
+}
+
+/// Dense solve with partial pivoting.
+Vec solve(Mat A, Vec b) {
+  for (int c = 0; c < kN; ++c) {
+    int p = c;
+    for (int r = c + 1; r < kN; ++r)
+      if (std::fabs(A[r][c]) > std::fabs(A[p][c])) p = r;
+    std::swap(A[c], A[p]);
+    std::swap(b[c], b[p]);
+    for (int r = c + 1; r < kN; ++r) {
+      const double f = A[r][c] / A[c][c];
+      for (int j = c; j < kN; ++j) A[r][j] -= f * A[c][j];
+      b[r] -= f * b[c];
+    }
+  }
+  Vec x{};
+  for (int r = kN - 1; r >= 0; --r) {
+    double s = b[r];
+    for (int j = r + 1; j < kN; ++j) s -= A[r][j] * x[j];
+    x[r] = s / A[r][r];
+  }
+  return x;
+}
+
+void cross(const double a[3], const double b[3], double c[3]) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+double dot(const double a[3], const double b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/// The tiny system: reference positions, u at t_n, g(u) = A0 (u - u0) + b + cubic (u - u0)^3.
+struct System {
+  double X[4][3];
+  Vec u0;
+  Mat A0;
+  Vec b;
+  double cubic = 0;
+  bool close = false;  ///< step 3 closes the gap at t_{n+1} (docs/THEORY.md §7.3)
+
+  Vec g(const Vec& u) const {
+    Vec du{};
+    for (int i = 0; i < kN; ++i) du[i] = u[i] - u0[i];
+    Vec r = mulv(A0, du);
+    for (int i = 0; i < kN; ++i) r[i] += b[i] + cubic * du[i] * du[i] * du[i];
+    return r;
+  }
+  Mat A(const Vec& u) const {  // exact Jacobian of g
+    Mat J = A0;
+    for (int i = 0; i < kN; ++i) J[i][i] += 3 * cubic * (u[i] - u0[i]) * (u[i] - u0[i]);
+    return J;
+  }
+  /// Slave and master positions of displacement u.
+  void positions(const Vec& u, double xs[3], double xm[3][3]) const {
+    for (int c = 0; c < 3; ++c) {
+      xs[c] = X[0][c] + u[c];
+      for (int i = 0; i < 3; ++i) xm[i][c] = X[i + 1][c] + u[3 * (i + 1) + c];
+    }
+  }
+};
+
+/// Current iterate of t_{n+1} with the slave's facet coordinates.
+struct State {
+  Vec u;
+  double xi[2];
+};
+
+/// Update steps 2-3 (frictionless_project) on the slave of state st; returns -min N.
+double project(const System& sys, State& st) {
+  double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
+  sys.positions(sys.u0, xs0, xm0);
+  sys.positions(st.u, xs1, xm1);
+  const double out = k::frictionless_project(xs0, xs1, xm0, xm1, st.xi, sys.close);
+  for (int c = 0; c < 3; ++c) st.u[c] = xs1[c] - sys.X[0][c];
+  return out;
+}
+
+k::FrictionlessBlocks blocks(const System& sys, const State& st) {
+  double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
+  sys.positions(sys.u0, xs0, xm0);
+  sys.positions(st.u, xs1, xm1);
+  const Vec g = sys.g(st.u);
+  k::FrictionlessBlocks b;
+  EXPECT_TRUE(k::frictionless_blocks(xs0, xs1, xm0, xm1, st.xi, g.data(), b, sys.close));
+  return b;
+}
+
+/// Global dense P, Pt, X from the blocks (slave rows 0..2, q columns 0, 1; dummy column 2 zero).
+struct Dense {
+  Mat P, Pt, X;
+};
+
+Dense dense(const k::FrictionlessBlocks& b) {
+  Dense d{identity(), identity(), zeros()};
+  for (int r = 0; r < 3; ++r) {
+    d.P[r][r] = d.Pt[r][r] = 0;
+    for (int j = 0; j < 9; ++j) {
+      d.P[r][3 + j] = b.Pm[r][j];
+      d.Pt[r][3 + j] = b.Ptm[r][j];
+    }
+    for (int q = 0; q < 2; ++q) {
+      d.P[r][q] = b.Pq[r][q];
+      d.Pt[r][q] = b.Ptq[r][q];
+    }
+  }
+  for (int q = 0; q < 2; ++q)
+    for (int j = 0; j < 9; ++j) {
+      d.X[q][3 + j] = b.Xsq[q][j];
+      d.X[3 + j][q] = b.Xmq[j][q];
+    }
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j) d.X[3 + i][3 + j] = b.Xmm[i][j];
+  return d;
+}
+
+/// Well-shaped facet, slave 0.06 above it; u_n small and random; A0 = 4 I + U(-1, 1)
+/// (non-symmetric, well conditioned), b = U(-0.5, 0.5). The current iterate: the masters rotate
+/// by 0.3 rad about their centroid, translate and deform (0.05) between t_n and t_{n+1}; the
+/// slave slides by about 0.15 and is projected (steps 2-3). deforming = false: xm1 == xm0.
+void make(unsigned seed, bool deforming, System& sys, State& st, bool close = false) {
+  sys.close = close;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const double X[4][3] = {
+      {0.35, 0.3, 0.06}, {0.0, 0.0, 0.0}, {1.1, 0.05, -0.03}, {0.1, 0.95, 0.05}};
+  for (int a = 0; a < 4; ++a)
+    for (int c = 0; c < 3; ++c) sys.X[a][c] = X[a][c];
+  for (int i = 0; i < kN; ++i) {
+    sys.u0[i] = 0.03 * U(rng);
+    sys.b[i] = 0.5 * U(rng);
+    for (int j = 0; j < kN; ++j) sys.A0[i][j] = (i == j ? 4.0 : 0.0) + U(rng);
+  }
+  st.u = sys.u0;
+  if (deforming) {
+    double ax[3] = {1.0 + 0.2 * U(rng), 2.0, 0.5};
+    const double na = std::sqrt(dot(ax, ax));
+    for (double& v : ax) v /= na;
+    const double th = 0.3, cs = std::cos(th), sn = std::sin(th);
+    double xm0[3][3], xs0[3], cen[3] = {0, 0, 0};
+    sys.positions(sys.u0, xs0, xm0);
+    for (int i = 0; i < 3; ++i)
+      for (int c = 0; c < 3; ++c) cen[c] += xm0[i][c] / 3;
+    const double tr[3] = {0.05, -0.03, 0.04};
+    for (int i = 0; i < 3; ++i) {
+      double r[3], axr[3];
+      for (int c = 0; c < 3; ++c) r[c] = xm0[i][c] - cen[c];
+      cross(ax, r, axr);
+      const double ad = dot(ax, r);
+      for (int c = 0; c < 3; ++c) {  // Rodrigues
+        const double rot = r[c] * cs + axr[c] * sn + ax[c] * ad * (1 - cs);
+        st.u[3 * (i + 1) + c] = cen[c] + rot + tr[c] + 0.05 * U(rng) - sys.X[i + 1][c];
+      }
+    }
+  }
+  const double slide[3] = {0.12, -0.08, 0.03};
+  for (int c = 0; c < 3; ++c) st.u[c] += slide[c];
+  st.xi[0] = st.xi[1] = 0;
+  EXPECT_LT(project(sys, st), 0.0) << "the slave's CPP should be inside the facet";
+}
+
+struct Friction {
+  k::FrictionlessBlocks b;
+  k::CoulombSlip c;
+};
+
+Friction friction(const System& sys, const State& st, double mu) {
+  double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
+  sys.positions(sys.u0, xs0, xm0);
+  sys.positions(st.u, xs1, xm1);
+  const Vec g = sys.g(st.u);
+  Friction f;
+  EXPECT_TRUE(k::frictionless_blocks(xs0, xs1, xm0, xm1, st.xi, g.data(), f.b, sys.close));
+  EXPECT_TRUE(k::coulomb_slip(xs0, xs1, xm0, xm1, st.xi, g.data(), mu, f.b, f.c));
+  return f;
+}
+
+/// R = P^T (g - f) at a state.
+Vec reduced_residual(const System& sys, const State& st, double mu) {
+  const Friction f = friction(sys, st, mu);
+  const Dense d = dense(f.b);
+  Vec g = sys.g(st.u);
+  for (int c = 0; c < 3; ++c) {
+    g[c] -= f.c.fT[c];
+    for (int i = 0; i < 3; ++i) g[3 * (i + 1) + c] += f.c.N[i] * f.c.fT[c];
+  }
+  return mulv(transpose(d.P), g);
+}
+
+/// The kernel's matrix: Pl^T A Pt + X + X_f (with_friction = false: the frictionless matrix).
+Mat reduced_matrix(const System& sys, const State& st, double mu, bool with_friction = true) {
+  const Friction f = friction(sys, st, mu);
+  Dense d = dense(f.b);
+  Mat Pl = d.P;
+  if (with_friction)
+    for (int r = 0; r < 3; ++r)
+      for (int q = 0; q < 2; ++q) Pl[r][q] = f.c.Plq[r][q];
+  Mat K = mul(mul(transpose(Pl), sys.A(st.u)), d.Pt);
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) K[i][j] += d.X[i][j];
+  if (with_friction)
+    for (int q = 0; q < 2; ++q) {
+      for (int j = 0; j < 9; ++j) K[q][3 + j] += f.c.Xsq[q][j];
+      for (int l = 0; l < 2; ++l) K[q][l] += f.c.Xqq[q][l];
+    }
+  return K;
+}
+
+State update(const System& sys, const State& st, const Vec& dq) {
+  const Dense d = dense(blocks(sys, st));
+  State s2 = st;
+  const Vec du = mulv(d.P, dq);
+  for (int i = 0; i < kN; ++i) s2.u[i] += du[i];
+  project(sys, s2);
+  return s2;
+}
+
+Mat fd_jacobian(const System& sys, const State& st, double mu, double h) {
+  Mat JR = zeros();
+  for (int j : kRed) {
+    Vec e{};
+    e[j] = h;
+    const Vec Rp = reduced_residual(sys, update(sys, st, e), mu);
+    e[j] = -h;
+    const Vec Rm = reduced_residual(sys, update(sys, st, e), mu);
+    for (int i = 0; i < kN; ++i) JR[i][j] = (Rp[i] - Rm[i]) / (2 * h);
+  }
+  return JR;
+}
+
+}  // namespace
+
+// docs/THEORY.md §11.3: the kernel's matrix is the Jacobian of the reduced residual with the
+// friction pair along update steps 1-3, on a deforming, rotating master, keeping and closing
+// the gap, for f_N of either sign. Tolerance as test_frictionless (central differences, h =
+// 1e-7: truncation ~1e-14, round-off ~1e-9 relative): 1e-6; leaving out f_N's dependence on
+// the displacements (the left factor and the g_s . dn term) misses by > 1e-3.
+TEST(Coulomb, ExactMatrixIsTheJacobianOfTheReducedResidual) {
+  for (bool close : {false, true})
+    for (unsigned seed : {1u, 2u, 3u}) {
+      System sys;
+      State st;
+      make(seed, true, sys, st, close);
+      const double mu = 0.4;
+      const Mat JR = fd_jacobian(sys, st, mu, 1e-7);
+      const Friction f = friction(sys, st, mu);
+      const Mat K = reduced_matrix(sys, st, mu);
+      // f_N's dependence on g_s left out: the frictionless left factor P instead of Pl
+      Mat Kn = K;
+      Mat Pl = dense(f.b).P;
+      for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 2; ++q) Pl[r][q] = f.c.Plq[r][q];
+      const Mat Kp = mul(mul(transpose(dense(f.b).P), sys.A(st.u)), dense(f.b).Pt);
+      const Mat Kl = mul(mul(transpose(Pl), sys.A(st.u)), dense(f.b).Pt);
+      for (int i = 0; i < kN; ++i)
+        for (int j = 0; j < kN; ++j) Kn[i][j] += Kp[i][j] - Kl[i][j];
+      const double e = rel_diff(K, JR, kRed, kRed), en = rel_diff(Kn, JR, kRed, kRed);
+      const double ef = rel_diff(reduced_matrix(sys, st, mu, false), JR, kRed, kRed);
+      std::printf(
+          "%s seed %u f_N %+.3f |s_T| %.3f: |K - J_fd|/|J_fd| %.2e; without Pl %.2e; "
+          "frictionless matrix %.2e\n",
+          close ? "closing" : "keeping", seed, f.c.fN, f.c.slip, e, en, ef);
+      EXPECT_GT(f.c.slip, 1e-3);
+      EXPECT_LT(e, 1e-6);
+      EXPECT_GT(en, 1e-3);
+      EXPECT_GT(ef, 1e-3);
+    }
+}
+
+// docs/THEORY.md §11.2: the force pair's work over the step, f_T . (dx_s - N dx_m), is
+// -mu |f_N| |s_T| = -work to round-off, f_T is tangential (f_T . n = 0) with |f_T| = mu |f_N|,
+// and the pair sums to zero (L). mu = 0: no force, no terms.
+TEST(Coulomb, WorkOfTheForcePairIsTheDissipation) {
+  for (bool close : {false, true})
+    for (unsigned seed : {4u, 5u}) {
+      System sys;
+      State st;
+      make(seed, true, sys, st, close);
+      const Friction f = friction(sys, st, 0.3);
+      double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
+      sys.positions(sys.u0, xs0, xm0);
+      sys.positions(st.u, xs1, xm1);
+      double w = 0, fn = 0, ft = 0, sum = 0;
+      for (int c = 0; c < 3; ++c) {
+        double rel = xs1[c] - xs0[c];
+        for (int i = 0; i < 3; ++i) rel -= f.c.N[i] * (xm1[i][c] - xm0[i][c]);
+        w += f.c.fT[c] * rel;
+        fn += f.c.fT[c] * f.b.n[c];
+        ft += f.c.fT[c] * f.c.fT[c];
+        sum += f.c.fT[c] * (1 - f.c.N[0] - f.c.N[1] - f.c.N[2]);
+      }
+      std::printf("%s seed %u: work %.6e, dissipation %.6e, f_T . n %.1e\n",
+                  close ? "closing" : "keeping", seed, w, f.c.work, fn);
+      EXPECT_GT(f.c.work, 0);
+      EXPECT_NEAR(w, -f.c.work, 1e-14 * f.c.work);
+      EXPECT_NEAR(fn, 0, 1e-15 * std::sqrt(ft));
+      EXPECT_NEAR(std::sqrt(ft), 0.3 * std::fabs(f.c.fN), 1e-15 * std::fabs(f.c.fN));
+      EXPECT_NEAR(sum, 0, 1e-15 * std::sqrt(ft));
+      const Friction f0 = friction(sys, st, 0.0);
+      const Mat K0 = reduced_matrix(sys, st, 0.0), Kf = reduced_matrix(sys, st, 0.0, false);
+      EXPECT_EQ(f0.c.work, 0.0);
+      EXPECT_LT(rel_diff(K0, Kf, kRed, kRed), 1e-15);
+    }
+}
