@@ -14,7 +14,6 @@ namespace emc::test::frictionless_system {
 
 namespace k = emc::kernels;
 
-
 constexpr int kN = 12;
 using Vec = std::array<double, kN>;
 using Mat = std::array<Vec, kN>;
@@ -64,7 +63,7 @@ inline double norm(const Vec& v) {
 
 /// ||A - B||_F / ||B||_F over rows x cols.
 inline double rel_diff(const Mat& A, const Mat& B, const std::vector<int>& rows,
-                const std::vector<int>& cols) {
+                       const std::vector<int>& cols) {
   double d = 0, s = 0;
   for (int i : rows)
     for (int j : cols) {
