@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "emcontact/app/input_schema.hpp"
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/app/output_dir.hpp"
 #include "emcontact/app/plot.hpp"
@@ -23,7 +24,6 @@
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
-#include "emcontact/input/input.hpp"
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 #include "emcontact/output/atomic_file.hpp"
@@ -191,7 +191,7 @@ double energy_scale(const output::MonitorRow& r0, const output::MonitorRow& r, d
 
 std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   auto sim = std::make_unique<Simulation>();
-  sim->in = input::read_input(opt.input, opt.overrides);
+  sim->in = read_input(opt.input, opt.overrides);
   const auto& P = *sim->in.params;
   auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
   sim->model = fem::build_model(P, std::move(meshes), opt.input);

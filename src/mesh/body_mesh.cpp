@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "emcontact/error.hpp"
-#include "src/mesh/internal.hpp"
+#include "internal.hpp"
 
 namespace emc::mesh {
 namespace {

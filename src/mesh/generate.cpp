@@ -16,7 +16,7 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/input/files.hpp"
-#include "src/mesh/internal.hpp"
+#include "internal.hpp"
 
 namespace emc::mesh {
 namespace {
@@ -265,7 +265,7 @@ BodyMesh plane_mesh(const Teuchos::ParameterList& p, double size, const std::str
   const Vec3 t2 = cross(n, t1);
   Vec3 origin{};
   for (int d = 0; d < 3; ++d) origin[d] = c[d] - hw * t1[d] - hw * t2[d];
-  const auto cells = detail::grid_cells(2.0 * hw, 2.0 * hw, size);
+  const auto cells = grid_cells(2.0 * hw, 2.0 * hw, size);
   return detail::triangle_grid(origin, scaled(2.0 * hw, t1), scaled(2.0 * hw, t2), cells[0],
                                cells[1]);
 }
@@ -308,7 +308,7 @@ BodyMesh rectangle_mesh(const Teuchos::ParameterList& p, double size, const std:
   a[q1] = extent[q1];
   b[q2] = extent[q2];
   if (axis[flat] < 0.0) std::swap(a, b);  // normal a x b along -e_flat
-  const auto cells = detail::grid_cells(norm(a), norm(b), size);
+  const auto cells = grid_cells(norm(a), norm(b), size);
   return detail::triangle_grid(lo, a, b, cells[0], cells[1]);
 }
 

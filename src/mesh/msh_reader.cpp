@@ -11,8 +11,8 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/mesh/generate.hpp"
-#include "src/mesh/internal.hpp"
-#include "src/mesh/msh_parser.hpp"
+#include "internal.hpp"
+#include "msh_parser.hpp"
 
 namespace emc::mesh {
 namespace {

@@ -1,6 +1,6 @@
 // The valid parameters of a body's `Mesh` sublist (defaults, validators, doc strings). Array
-// lengths and cross-parameter conditions are checked by build_mesh. Teuchos only (emc_params):
-// the input module uses it without the mesh library.
+// lengths and cross-parameter conditions are checked by build_mesh; the app's input schema
+// (emcontact/app/input_schema.hpp) puts it in each body's template.
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <limits>

@@ -1,6 +1,6 @@
 #pragma once
-// The `Contact` part of the input: declared here, validated by the input module (which also
-// cross-checks the body names, see emc::input::read_input).
+// The `Contact` part of the input: declared here, put in the input's schema by the app (which
+// also cross-checks the body names, see emc::app::input_schema).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::contact {

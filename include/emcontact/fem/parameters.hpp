@@ -1,6 +1,7 @@
 #pragma once
-// The body, load, Dirichlet and assembly parts of the input: declared here, validated by the input
-// module (which adds each body's `Mesh` sublist from emc::mesh::valid_mesh_parameters()).
+// The body, load, Dirichlet and assembly parts of the input: declared here, put in the input's
+// schema by the app (which adds each body's `Mesh` sublist from
+// emc::mesh::valid_mesh_parameters()).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::fem {

@@ -1,6 +1,6 @@
 #pragma once
-// Small factories for the Teuchos validators the parameter schemas use (header only, so the
-// Teuchos-only emc_params library can use them). Teuchos number ranges are inclusive: a strict
+// Small factories for the Teuchos validators the parameter schemas use (header only: every module
+// declares its parameters with them). Teuchos number ranges are inclusive: a strict
 // bound is the neighbouring double (the input module prints it back as "> 0", "< 0.5").
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
-// The `Solver` section of the input (Newton and linear solver): declared here, validated by
-// the input module.
+// The `Solver` section of the input (Newton and linear solver): declared here, put in
+// the input's schema by the app (emc::app::input_schema).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::linalg {

@@ -1,5 +1,6 @@
 #pragma once
-// The `Output` section of the input: declared here, validated by the input module.
+// The `Output` section of the input: declared here, put in the
+// input's schema by the app (emc::app::input_schema).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::output {

@@ -1,5 +1,6 @@
-// Unit tests of the input module: defaults, one-paragraph errors (file, path, allowed),
-// overrides, pass-through sublists, cross checks and the generated documentation.
+// Unit tests of the input module, with the app's whole schema: defaults, one-paragraph errors
+// (file, path, allowed), overrides, pass-through sublists, cross checks and the generated
+// documentation.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "emcontact/app/input_schema.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/input.hpp"
@@ -16,7 +18,7 @@
 namespace {
 
 namespace fs = std::filesystem;
-using emc::input::read_input;
+using emc::app::read_input;
 using Teuchos::Array;
 using Teuchos::ParameterList;
 
@@ -603,7 +605,7 @@ TEST(InputFiles, BadInputsAreRefusedByTheInputModule) {
 }
 
 TEST(InputDocs, TablesListEveryParameter) {
-  const std::string md = emc::input::schema_markdown();
+  const std::string md = emc::input::schema_markdown(emc::app::input_schema());
   for (const char* row :
        {"| `dt` | double | `0.01` | > 0 and <= 1e30 |",
         "| `integrator` | string | `energy-momentum` |",
@@ -620,7 +622,7 @@ TEST(InputDocs, TablesListEveryParameter) {
 }
 
 TEST(InputSchema, ValidParametersHasEverySection) {
-  const auto all = emc::input::valid_parameters();
+  const auto all = emc::input::valid_parameters(emc::app::input_schema());
   for (const char* s : {"Time", "Bodies", "Loads", "Dirichlet", "Contact", "Solver", "Output"})
     EXPECT_TRUE(all->isSublist(s)) << s;
   EXPECT_TRUE(all->sublist("Contact").sublist("<pair>").isParameter("max penetration"));
