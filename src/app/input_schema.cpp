@@ -20,30 +20,50 @@ namespace {
 namespace detail = emc::input::detail;
 using Teuchos::ParameterList;
 
+/// The sublist `name` of `list`, documented `doc`, set to `schema`.
+void set_sublist(ParameterList& list, const std::string& name, const std::string& doc,
+                 const ParameterList& schema) {
+  auto& sub = list.sublist(name, false, doc);
+  sub = schema;
+  sub.setName(name);
+}
+
+/// Every entry of `from`, appended to `to` in order.
+void append_entries(ParameterList& to, const ParameterList& from) {
+  for (auto it = from.begin(); it != from.end(); ++it) to.setEntry(from.name(it), from.entry(it));
+}
+
 /// Template of one body: `Mesh` (mesh module), then `Material` and `Initial` (fem module).
-Teuchos::RCP<const Teuchos::ParameterList> body_template() {
-  auto body = Teuchos::rcp(new Teuchos::ParameterList("<body>"));
-  auto& mesh = body->sublist("Mesh", false, "The body's mesh: a Gmsh file or a generated shape.");
-  mesh = *emc::mesh::valid_mesh_parameters();
-  mesh.setName("Mesh");
-  const auto fem = emc::fem::valid_body_parameters();
-  for (auto it = fem->begin(); it != fem->end(); ++it)
-    body->setEntry(fem->name(it), fem->entry(it));
+Teuchos::RCP<const ParameterList> body_template() {
+  auto body = Teuchos::rcp(new ParameterList("<body>"));
+  set_sublist(*body, "Mesh", "The body's mesh: a Gmsh file or a generated shape.",
+              *emc::mesh::valid_mesh_parameters());
+  append_entries(*body, *emc::fem::valid_body_parameters());
   return body;
 }
 
-/// `Solver`: `Newton` and `Linear` (linalg module), then `Assembly` (fem module).
-Teuchos::RCP<const Teuchos::ParameterList> solver_schema() {
-  auto solver = Teuchos::rcp(new Teuchos::ParameterList(*emc::linalg::valid_parameters()));
-  auto& assembly = solver->sublist("Assembly", false, "Element assembly of each Newton iteration.");
-  assembly = *emc::fem::valid_assembly_parameters();
-  assembly.setName("Assembly");
+/// `Time`: the time module's parameters, then the fem module's (`integrator`).
+Teuchos::RCP<const ParameterList> time_schema() {
+  auto time = Teuchos::rcp(new ParameterList(*emc::time::valid_parameters()));
+  append_entries(*time, *emc::fem::valid_time_parameters());
+  return time;
+}
+
+/// `Solver`: `Newton` (time module), `Linear` (linalg module), then `Assembly` (fem module).
+Teuchos::RCP<const ParameterList> solver_schema() {
+  auto solver = Teuchos::rcp(new ParameterList("Solver"));
+  set_sublist(*solver, "Newton", "Newton iteration of each time step.",
+              *emc::time::valid_newton_parameters());
+  set_sublist(*solver, "Linear", "Linear solver of each Newton iteration.",
+              *emc::linalg::valid_linear_parameters());
+  set_sublist(*solver, "Assembly", "Element assembly of each Newton iteration.",
+              *emc::fem::valid_assembly_parameters());
   return solver;
 }
 
 std::vector<input::Section> sections() {
   return {
-      {"Time", "Time stepping.", emc::time::valid_parameters(), ""},
+      {"Time", "Time stepping.", time_schema(), ""},
       {"Bodies",
        "One sublist per body; its name (`<body>` below) is free. At least one body is required. "
        "A body whose `Mesh` has no tetrahedra (`type` `plane` or `rectangle`, or a `file` with "

@@ -209,8 +209,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   bool frictionless = false;
   for (const auto& pr : sim->contact->pairs())
     frictionless |= pr.kind == contact::Kind::frictionless;
-  if (comm->getRank() == 0 &&
-      P.sublist("Solver").sublist("Linear").get<std::string>("type") == "cg" &&
+  if (comm->getRank() == 0 && sim->solver->assumes_symmetric() &&
       (sim->model.integrator == kernels::Integrator::energy_momentum || frictionless))
     std::fprintf(stderr,
                  "warning: %s: Solver/Linear/type = cg on a non-symmetric Newton matrix "

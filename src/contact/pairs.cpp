@@ -1,5 +1,6 @@
 #include "emcontact/contact/pairs.hpp"
 
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
 
@@ -119,7 +120,7 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     const std::string where = file + ": Contact/" + name;
     Pair p;
     p.name = name;
-    p.kind = c.get<std::string>("type") == "frictionless" ? Kind::frictionless : Kind::full_stick;
+    p.kind = Teuchos::getIntegralValue<Kind>(c, "type");
     p.close_gap = c.get<bool>("close gap");
     const SurfaceRef s = parse_ref(model, c.get<std::string>("slave"), where + "/slave");
     const SurfaceRef m = parse_ref(model, c.get<std::string>("master"), where + "/master");

@@ -1,6 +1,7 @@
 // Schema of one contact pair (`Contact/<pair>`).
 #include "emcontact/contact/parameters.hpp"
 
+#include "emcontact/contact/pairs.hpp"
 #include "emcontact/input/validators.hpp"
 
 namespace emc::contact {
@@ -26,7 +27,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
           string_choice("type", {"full stick", "frictionless"},
                         {"an active slave node sticks to its point of the master facet",
                          "an active slave node slides freely on the master facet (only its "
-                         "normal gap is constrained)"}));
+                         "normal gap is constrained)"},
+                        std::vector<Kind>{Kind::full_stick, Kind::frictionless}));
   pl->set("max penetration", 0.0,
           "Largest penetration [m] at which a slave node is caught by a master facet (a node "
           "deeper than this, e.g. behind a thin master, is not activated); 0: automatic, half "

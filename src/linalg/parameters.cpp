@@ -1,4 +1,4 @@
-// Schema of the `Solver` section.
+// Schema of `Solver/Linear`.
 #include "emcontact/linalg/parameters.hpp"
 
 #include "emcontact/input/validators.hpp"
@@ -7,22 +7,6 @@ namespace emc::linalg {
 namespace {
 
 using namespace emc::input;
-
-void set_newton(Teuchos::ParameterList& pl) {
-  pl.set("relative tolerance", 1e-10,
-         "Newton converges when the residual norm falls below this fraction of the "
-         "step's initial residual norm (or below the absolute tolerance).",
-         positive_double());
-  pl.set("absolute tolerance", 0.0,
-         "Absolute tolerance of the Newton residual norm (0 = not used).", double_at_least(0.0));
-  pl.set("max iterations", 25, "Newton iterations per step before the step counts as failed.",
-         int_at_least(1));
-  pl.set("adaptive linear tolerance", true,
-         "Solve each Newton iteration's linear system only to a hundredth of the residual the "
-         "quadratically converging Newton step leaves anyway (estimated from the residual "
-         "history), never tighter than Solver/Linear/tolerance requires and never below the "
-         "round-off floor; false: every solve to Solver/Linear/tolerance.");
-}
 
 void set_linear(Teuchos::ParameterList& pl) {
   pl.set("type", std::string("gmres"),
@@ -109,10 +93,9 @@ void set_linear(Teuchos::ParameterList& pl) {
 
 }  // namespace
 
-Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
-  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Solver"));
-  set_newton(pl->sublist("Newton", false, "Newton iteration of each time step."));
-  set_linear(pl->sublist("Linear", false, "Linear solver of each Newton iteration."));
+Teuchos::RCP<const Teuchos::ParameterList> valid_linear_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Linear"));
+  set_linear(*pl);
   return pl;
 }
 

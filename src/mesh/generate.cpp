@@ -6,6 +6,7 @@
 #include <gmsh.h>
 
 #include <Teuchos_Array.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -390,18 +391,26 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
 BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string& input_dir,
                     const std::string& where) {
   const Teuchos::ParameterList p = validated(mesh_params, where);
-  const std::string type = p.get<std::string>("type");
-  if (type == "file") return mesh_from_file(p, input_dir, where);
+  const MeshType type = Teuchos::getIntegralValue<MeshType>(p, "type");
+  if (type == MeshType::file) return mesh_from_file(p, input_dir, where);
   const double size = positive_param(p, "size", where);
-  if (type == "box") return generate(box_shape(p, where), size, where);
-  if (type == "cylinder") return generate(cylinder_shape(p, where, false), size, where);
-  if (type == "hollow cylinder") return generate(cylinder_shape(p, where, true), size, where);
-  if (type == "spherical shell") return generate(shell_shape(p, where), size, where);
-  if (type == "plane") return plane_mesh(p, size, where);
-  if (type == "rectangle") return rectangle_mesh(p, size, where);
-  throw InputError(where + ": parameter 'type' is '" + type + "'; allowed: 'box', " +
-                   "'cylinder', 'hollow cylinder', 'spherical shell', 'plane', 'rectangle', " +
-                   "'file'");
+  switch (type) {
+    case MeshType::box:
+      return generate(box_shape(p, where), size, where);
+    case MeshType::cylinder:
+      return generate(cylinder_shape(p, where, false), size, where);
+    case MeshType::hollow_cylinder:
+      return generate(cylinder_shape(p, where, true), size, where);
+    case MeshType::spherical_shell:
+      return generate(shell_shape(p, where), size, where);
+    case MeshType::plane:
+      return plane_mesh(p, size, where);
+    case MeshType::rectangle:
+      return rectangle_mesh(p, size, where);
+    case MeshType::file:  // above
+      break;
+  }
+  throw InputError(where + ": parameter 'type': not a shape");
 }
 
 }  // namespace emc::mesh

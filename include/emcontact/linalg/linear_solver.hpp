@@ -84,6 +84,8 @@ class LinearSolver {
   /// solve, or with `multigrid reuse = refresh` the multigrid hierarchy's coarse operators and
   /// smoothers recomputed for it (its aggregates and prolongators kept).
   void matrix_changed();
+  /// True for a solver that assumes a symmetric matrix (Solver/Linear/type = cg).
+  bool assumes_symmetric() const { return type_ == "cg"; }
   /// True when the preconditioner is built from node positions (multigrid's rigid-body modes).
   bool uses_positions() const {
     return (prec_type_ == "muelu" || auto_) && null_space_ == "rigid body modes";

@@ -1,15 +1,15 @@
 #pragma once
-// The `Solver` section of the input (Newton and linear solver): declared here, put in
-// the input's schema by the app (emc::app::input_schema).
+// `Solver/Linear` of the input (the linear solver): declared here, put in the input's schema by
+// the app (emc::app::input_schema).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::linalg {
 
-/// Valid parameters of `Solver`: sublist `Newton` (`relative tolerance`, `absolute tolerance`,
-/// `max iterations`) and sublist `Linear` (`type`: gmres | cg | klu2 | mumps, `preconditioner`:
-/// ilu | schwarz | muelu | none, `tolerance`, `max iterations`, `reuse preconditioner`,
-/// `factorisation reuse rate`, `residual check factor`, and the pass-through sublists `Belos`,
-/// `Ifpack2`, `MueLu` whose contents go unchanged to Trilinos).
-Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+/// Valid parameters of `Solver/Linear` (read by LinearSolver): `type` (gmres | cg | klu2 |
+/// mumps), `preconditioner` (auto | ilu | schwarz | muelu | none), `tolerance`, `max
+/// iterations`, `reuse preconditioner`, `factorisation reuse rate`, the multigrid choices,
+/// `residual check factor`, and the pass-through sublists `Belos`, `Ifpack2`, `MueLu` whose
+/// contents go unchanged to Trilinos.
+Teuchos::RCP<const Teuchos::ParameterList> valid_linear_parameters();
 
 }  // namespace emc::linalg

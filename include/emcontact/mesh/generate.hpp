@@ -8,6 +8,9 @@
 
 namespace emc::mesh {
 
+/// The values of `Mesh/type` (its validator's: Teuchos::getIntegralValue<MeshType>).
+enum class MeshType { box, cylinder, hollow_cylinder, spherical_shell, plane, rectangle, file };
+
 /// Valid parameters of a body's `Mesh` sublist (with defaults, validators, doc strings).
 Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters();
 

@@ -11,9 +11,11 @@
 #include <vector>
 
 #include "emcontact/app/input_schema.hpp"
+#include "emcontact/contact/pairs.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/input.hpp"
+#include "kernels/em_tet4.hpp"
 
 namespace {
 
@@ -159,7 +161,9 @@ TEST_F(InputTest, IntegralValueOfChoices) {
   Xml x;
   x.time += R"(<Parameter name="integrator" type="string" value="midpoint"/>)";
   const auto in = read(x);
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(in.params->sublist("Time"), "integrator"), 1);
+  EXPECT_EQ(
+      Teuchos::getIntegralValue<emc::kernels::Integrator>(in.params->sublist("Time"), "integrator"),
+      emc::kernels::Integrator::midpoint);
 }
 
 // ---------------------------------------------------------------- bad values
@@ -332,7 +336,8 @@ TEST_F(InputTest, ContactPairDefaults) {
   EXPECT_EQ(pair.get<std::string>("slave"), "ball");
   EXPECT_EQ(pair.get<std::string>("master"), "floor");
   EXPECT_EQ(pair.get<std::string>("type"), "full stick");
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 0);
+  EXPECT_EQ(Teuchos::getIntegralValue<emc::contact::Kind>(pair, "type"),
+            emc::contact::Kind::full_stick);
   EXPECT_EQ(pair.get<double>("max penetration"), 0.0);
   // The rigid body keeps the defaults of what it does not need.
   const auto& floor = in.params->sublist("Bodies").sublist("floor");
@@ -354,7 +359,8 @@ TEST_F(InputTest, ContactPairWithSurfacesAndEveryParameter) {
   const auto& pair = in.params->sublist("Contact").sublist("drop");
   EXPECT_EQ(pair.get<std::string>("slave"), "ball/zmin");
   EXPECT_EQ(pair.get<std::string>("master"), "plate/zmax");
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 1);
+  EXPECT_EQ(Teuchos::getIntegralValue<emc::contact::Kind>(pair, "type"),
+            emc::contact::Kind::frictionless);
   EXPECT_EQ(pair.get<double>("max penetration"), 0.01);
 }
 
@@ -437,7 +443,8 @@ TEST_F(InputTest, OverrideOfContactPair) {
                         "Contact/drop/slave=ball/zmin"});
   const auto& pair = in.params->sublist("Contact").sublist("drop");
   EXPECT_EQ(pair.get<std::string>("type"), "frictionless");
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 1);
+  EXPECT_EQ(Teuchos::getIntegralValue<emc::contact::Kind>(pair, "type"),
+            emc::contact::Kind::frictionless);
   EXPECT_EQ(pair.get<double>("max penetration"), 0.002);
   EXPECT_EQ(pair.get<std::string>("slave"), "ball/zmin");
   expect_message(error(with_pair(kBallOnFloor), {"Contact/drop/type=slip"}),
