@@ -98,17 +98,11 @@ void Contact::mark_kept_gaps(std::vector<Active>& active, Positions x1) const {
 
 ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
   std::vector<double> send;
-  for (const auto& a : mine)
-    send.insert(send.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1]});
+  for (const auto& a : mine) pack(a, send);
   const auto all = allgather(*disc_.comm(), send);
   ActiveIndex index;
-  for (std::size_t k = 0; k + 4 < all.size(); k += 5) {
-    Active a;
-    a.slave = static_cast<int>(all[k]);
-    a.pair = static_cast<int>(all[k + 1]);
-    a.facet = static_cast<int>(all[k + 2]);
-    a.xi[0] = all[k + 3];
-    a.xi[1] = all[k + 4];
+  for (std::size_t k = 0; k + kPackedActive <= all.size(); k += kPackedActive) {
+    const Active a = unpack(&all[k]);
     index.by_slave.emplace(a.slave, a);
   }
   return index;

@@ -17,12 +17,12 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/input/files.hpp"
+#include "emcontact/vec3.hpp"
 #include "internal.hpp"
 
 namespace emc::mesh {
 namespace {
 
-using Vec3 = std::array<double, 3>;
 using Tri = std::array<int, 3>;
 
 /// Upper bound on the estimated tet count of a built-in mesh (a too small `size` would
@@ -36,22 +36,6 @@ struct Shape {
   std::function<std::string(const std::array<Vec3, 3>&)> surface_of;  ///< "" if unknown
   double volume = 0.0;
 };
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double norm(const Vec3& a) {
-  return std::sqrt(dot(a, a));
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 scaled(double s, const Vec3& a) {
-  return {s * a[0], s * a[1], s * a[2]};
-}
 
 std::string str(double v) {
   std::ostringstream s;
