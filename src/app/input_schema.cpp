@@ -115,13 +115,19 @@ void check_end_time(const ParameterList& params, const std::string& file) {
                   "a double >= dt"});
 }
 
+/// Calls f(path, sublist) for each user-named sublist of the named section `section` (path
+/// "<section>/<name>").
+template <class F>
+void for_each_named(const ParameterList& params, const std::string& section, F f) {
+  const auto& list = params.sublist(section);
+  for (auto it = list.begin(); it != list.end(); ++it)
+    f(section + "/" + list.name(it), list.sublist(list.name(it)));
+}
+
 /// Each Dirichlet condition names an existing body and a (non-empty) surface.
 void check_dirichlet(const ParameterList& params, const std::string& file) {
   const auto& bodies = params.sublist("Bodies");
-  const auto& dirichlet = params.sublist("Dirichlet");
-  for (auto it = dirichlet.begin(); it != dirichlet.end(); ++it) {
-    const std::string path = "Dirichlet/" + dirichlet.name(it);
-    const auto& c = dirichlet.sublist(dirichlet.name(it));
+  for_each_named(params, "Dirichlet", [&](const std::string& path, const ParameterList& c) {
     const auto& body = c.get<std::string>("body");
     if (!bodies.isSublist(body))
       detail::fail(file, path + "/body",
@@ -130,7 +136,7 @@ void check_dirichlet(const ParameterList& params, const std::string& file) {
     if (c.get<std::string>("surface").empty())
       detail::fail(file, path + "/surface",
                    {"missing (required)", "a named surface of the mesh of body \"" + body + "\""});
-  }
+  });
 }
 
 /// The `Mesh/type` of a (validated) body.
@@ -196,10 +202,7 @@ std::string contact_body(const ParameterList& bodies, const ParameterList& pair,
 /// (That a `/surface` exists is checked once the meshes are built.)
 void check_contact(const ParameterList& params, const std::string& file) {
   const auto& bodies = params.sublist("Bodies");
-  const auto& contact = params.sublist("Contact");
-  for (auto it = contact.begin(); it != contact.end(); ++it) {
-    const std::string path = "Contact/" + contact.name(it);
-    const auto& pair = contact.sublist(contact.name(it));
+  for_each_named(params, "Contact", [&](const std::string& path, const ParameterList& pair) {
     const std::string slave = contact_body(bodies, pair, "slave", path + "/slave", file);
     const std::string master = contact_body(bodies, pair, "master", path + "/master", file);
     const std::string& type = mesh_type(bodies, slave);
@@ -218,7 +221,7 @@ void check_contact(const ParameterList& params, const std::string& file) {
                     "a body other than \"" + slave + "\": " +
                         body_names(bodies, "(no other body in the input)",
                                    [&](const std::string& b) { return b != slave; })});
-  }
+  });
 }
 
 /// The checks across sections, in this order.

@@ -61,6 +61,15 @@ ValidatorPtr string_choice(const std::string& name, const std::vector<std::strin
       strings(), strings_docs(), integral(), name));
 }
 
+/// Sets the string parameter `name` of `pl` (default `value`, documented `doc`) to one of
+/// `choices`, documented by `docs`, whose values are `values` (string_choice above).
+template <class E>
+void set_choice(Teuchos::ParameterList& pl, const std::string& name, const std::string& value,
+                const std::string& doc, const std::vector<std::string>& choices,
+                const std::vector<std::string>& docs, const std::vector<E>& values) {
+  pl.set(name, value, doc, string_choice(name, choices, docs, values));
+}
+
 /// As above, the value of choice i being i (Teuchos::getIntegralValue<int>).
 inline ValidatorPtr string_choice(const std::string& name, const std::vector<std::string>& choices,
                                   const std::vector<std::string>& docs) {
