@@ -234,13 +234,13 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   time::State& state = sim->state;
   time::Stepper& stepper = *sim->stepper;
 
-  const auto& out = P.sublist("Output");
+  const output::Settings out = output::settings(P.sublist("Output"));
   Summary sum;
   const OutputDirectory output_dir(opt, out, *comm);  // locked until the run returns
   sum.output_dir = output_dir.path();
-  Writers w = make_writers(disc, sum.output_dir, out.get<int>("every"));
+  Writers w = make_writers(disc, sum.output_dir, out.every);
   const bool root = comm->getRank() == 0;
-  Progress progress(root && out.get<bool>("progress"), stepper.end());
+  Progress progress(root && out.progress, stepper.end());
 
   sum.tets = model.num_tets();
   sum.nodes = model.num_nodes();
@@ -255,7 +255,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   }
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
-  const int checkpoint_every = out.get<int>("checkpoint every");
+  const int checkpoint_every = out.checkpoint_every;
   sigterm_stops_time_loop();
   // the step of DIR/checkpoint.h5 if this run wrote it or restarted from it, else -1
   long kept = same_file(opt.restart, sum.output_dir + "/checkpoint.h5") ? state.step : -1;
@@ -308,7 +308,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   }
   progress.finish();
   if (root) w.monitors->flush(true);
-  if (root && out.get<bool>("plot")) plot_monitors(sum.output_dir);
+  if (root && out.plot) plot_monitors(sum.output_dir);
   sum.steps = state.step;
   sum.time = state.t;
   if (sim->contact) {  // docs/THEORY.md §8: what each rank holds and receives of contact
