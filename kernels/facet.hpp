@@ -21,8 +21,8 @@ KOKKOS_INLINE_FUNCTION Facet facet(const double xm[3][3]) {
     f.t1[i] = xm[1][i] - xm[0][i];
     f.t2[i] = xm[2][i] - xm[0][i];
   }
-  const double c[3] = {f.t1[1] * f.t2[2] - f.t1[2] * f.t2[1], f.t1[2] * f.t2[0] - f.t1[0] * f.t2[2],
-                       f.t1[0] * f.t2[1] - f.t1[1] * f.t2[0]};
+  double c[3];
+  cross(f.t1, f.t2, c);
   f.area2 = kernels::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
   for (int i = 0; i < 3; ++i) f.n[i] = f.area2 > 0 ? c[i] / f.area2 : 0.0;
   return f;

@@ -60,10 +60,9 @@ KOKKOS_INLINE_FUNCTION bool frictionless_closed_right_factor(const double xs1[3]
   if (!(f1.area2 > 0) || !(d > 0)) return false;
   double sp[3];
   for (int c = 0; c < 3; ++c) sp[c] = (bv[c] - bn * f1.n[c]) / f1.area2;
-  const double w1[3] = {f1.t2[1] * sp[2] - f1.t2[2] * sp[1], f1.t2[2] * sp[0] - f1.t2[0] * sp[2],
-                        f1.t2[0] * sp[1] - f1.t2[1] * sp[0]};
-  const double w2[3] = {sp[1] * f1.t1[2] - sp[2] * f1.t1[1], sp[2] * f1.t1[0] - sp[0] * f1.t1[2],
-                        sp[0] * f1.t1[1] - sp[1] * f1.t1[0]};
+  double w1[3], w2[3];
+  cross(f1.t2, sp, w1);
+  cross(sp, f1.t1, w2);
   double wm[9], tq[2] = {0, 0};
   for (int c = 0; c < 3; ++c) {
     wm[c] = -(w1[c] + w2[c]);
@@ -101,10 +100,8 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
 
   // Mid-point geometry (§5, eq. 47-49): tau_xi, tau_eta, n, |c| = |tau_xi x tau_eta| (§2).
   double xmh[3][3], xsh[3];
-  for (int r = 0; r < 3; ++r) {
-    xsh[r] = 0.5 * (xs0[r] + xs1[r]);
-    for (int i = 0; i < 3; ++i) xmh[i][r] = 0.5 * (xm0[i][r] + xm1[i][r]);
-  }
+  midpoint(xs0, xs1, xsh);
+  midpoint(xm0, xm1, xmh);
   const Facet f = facet(xmh);
   const double G11 = f.t1[0] * f.t1[0] + f.t1[1] * f.t1[1] + f.t1[2] * f.t1[2];
   const double G12 = f.t1[0] * f.t2[0] + f.t1[1] * f.t2[1] + f.t1[2] * f.t2[2];
@@ -161,10 +158,9 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
   for (int c = 0; c < 3; ++c) sp[c] = (sv[c] - sn * n[c]) / f.area2;
   // d/d(dtau_xi) of sp . (dtau_xi x tau_eta) = tau_eta x sp;  of sp . (tau_xi x dtau_eta) = sp x
   // tau_xi
-  const double w1[3] = {f.t2[1] * sp[2] - f.t2[2] * sp[1], f.t2[2] * sp[0] - f.t2[0] * sp[2],
-                        f.t2[0] * sp[1] - f.t2[1] * sp[0]};
-  const double w2[3] = {sp[1] * f.t1[2] - sp[2] * f.t1[1], sp[2] * f.t1[0] - sp[0] * f.t1[2],
-                        sp[0] * f.t1[1] - sp[1] * f.t1[0]};
+  double w1[3], w2[3];
+  cross(f.t2, sp, w1);
+  cross(sp, f.t1, w2);
   double wm[9];
   for (int c = 0; c < 3; ++c) {
     wm[c] = -0.5 * (w1[c] + w2[c]);  // m1: dtau_xi = dtau_eta = -du_m1/2
@@ -225,10 +221,8 @@ KOKKOS_INLINE_FUNCTION double frictionless_project(const double xs0[3], double x
                                                    const double xm0[3][3], const double xm1[3][3],
                                                    double xi[2], bool close = false) {
   double xmh[3][3], xsh[3];
-  for (int r = 0; r < 3; ++r) {
-    xsh[r] = 0.5 * (xs0[r] + xs1[r]);
-    for (int i = 0; i < 3; ++i) xmh[i][r] = 0.5 * (xm0[i][r] + xm1[i][r]);
-  }
+  midpoint(xs0, xs1, xsh);
+  midpoint(xm0, xm1, xmh);
   double xi_new[2], gap;
   if (!facet_cpp(xsh, xmh, xi_new, gap)) return kernels::infinity();
   const Facet f = facet(xmh);

@@ -26,4 +26,21 @@ KOKKOS_INLINE_FUNCTION constexpr double epsilon() {
   return std::numeric_limits<double>::epsilon();
 }
 
+/// c = a x b.
+KOKKOS_INLINE_FUNCTION void cross(const double a[3], const double b[3], double c[3]) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/// m = (a + b) / 2: a point at the mid-point of two configurations.
+KOKKOS_INLINE_FUNCTION void midpoint(const double a[3], const double b[3], double m[3]) {
+  for (int i = 0; i < 3; ++i) m[i] = 0.5 * (a[i] + b[i]);
+}
+
+/// The same for the three nodes of a facet.
+KOKKOS_INLINE_FUNCTION void midpoint(const double a[3][3], const double b[3][3], double m[3][3]) {
+  for (int k = 0; k < 3; ++k) midpoint(a[k], b[k], m[k]);
+}
+
 }  // namespace emc::kernels

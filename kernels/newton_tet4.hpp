@@ -17,9 +17,9 @@ struct ElementState {
 /// r[12]: element residual; A (optional): element Newton matrix; scale[12] (optional): sum of
 /// the absolute values of the four terms of g plus a bound of the force that the round-off of
 /// the displacements themselves causes in a stiff element in large rigid motion (V_e (lambda +
-/// 2 mu) |G_A| sum_B |u_B| |G_B|, weighted 1e-3: on the stiff thin disks of three_disks.xml
-/// the residual stagnates at about 1.5e-4 of this bound times 100 eps, so the floor
-/// 100 eps |scale| of the §1 Newton tolerance sits about 7 times above the measured noise).
+/// 2 mu) |G_A| sum_B |u_B| |G_B|, weighted 1e-3: the floor 100 eps |scale| of the §1 Newton
+/// tolerance then sits above the noise at which the stiff thin disks of three_disks.xml
+/// stagnate; the figures are in perf/README.md "Constants of the code, measured").
 KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m, double rho,
                                         const double grav[3], Integrator integ, double dt,
                                         const ElementState& s, double r[12], double (*A)[12],

@@ -1,8 +1,9 @@
 // Prints inputs/README.md: a hand-written introduction, then the generated parameter tables
-// (emc::input::schema_markdown()). The ctest input_docs_up_to_date compares the two.
+// (emc::input::schema_markdown of emc::app::input_schema()). The ctest input_docs_up_to_date
+// compares the two.
 #include <iostream>
 
-#include "emcontact/input/input.hpp"
+#include "emcontact/app/input_schema.hpp"
 
 namespace {
 
@@ -47,6 +48,6 @@ from the slave) is refused before the first step.
 }  // namespace
 
 int main() {
-  std::cout << kIntro << emc::input::schema_markdown();
+  std::cout << kIntro << emc::input::schema_markdown(emc::app::input_schema());
   return 0;
 }

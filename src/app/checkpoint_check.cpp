@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "emcontact/contact/active.hpp"
 #include "emcontact/error.hpp"
 
 namespace emc::app {
@@ -72,7 +73,8 @@ void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std:
   sized(c.u, "u", false);
   sized(c.V, "V", false);
   sized(c.last_increment, "last_increment", true);
-  if (c.active.size() % 5 != 0 || c.normal_force.size() != c.active.size() / 5)
+  if (c.active.size() % contact::kPackedActive != 0 ||
+      c.normal_force.size() != c.active.size() / contact::kPackedActive)
     refuse(path, "the checkpoint's active set has " + std::to_string(c.active.size()) +
                      " values and " + std::to_string(c.normal_force.size()) +
                      " normal forces (5 values and 1 force per active node)");
@@ -89,7 +91,8 @@ int index_in(double v, std::size_t n, const std::string& what, const std::string
 void check_active(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
   static const std::vector<contact::Pair> none;
   const auto& pairs = sim.contact ? sim.contact->pairs() : none;
-  for (std::size_t k = 0; k + 4 < c.active.size(); k += 5) {
+  for (std::size_t k = 0; k + contact::kPackedActive <= c.active.size();
+       k += contact::kPackedActive) {
     const int slave = index_in(c.active[k], sim.model.num_nodes(), "node", path);
     const auto& pair = pairs[index_in(c.active[k + 1], pairs.size(), "pair", path)];
     index_in(c.active[k + 2], pair.facets.size(), "facet of pair " + pair.name, path);
@@ -97,7 +100,7 @@ void check_active(const output::Checkpoint& c, const Simulation& sim, const std:
       refuse(path, "the checkpoint's active node " + std::to_string(slave) +
                        " is not a slave node of pair " + pair.name);
     if (!std::isfinite(c.active[k + 3]) || !std::isfinite(c.active[k + 4]) ||
-        !std::isfinite(c.normal_force[k / 5]))
+        !std::isfinite(c.normal_force[k / contact::kPackedActive]))
       refuse(path, "the checkpoint's active node " + std::to_string(slave) +
                        " has coordinates or a normal force that are not finite");
   }

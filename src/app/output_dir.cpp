@@ -28,9 +28,9 @@ std::string short_list(const std::vector<std::string>& names) {
 
 }  // namespace
 
-OutputDirectory::OutputDirectory(const Options& opt, const Teuchos::ParameterList& output,
+OutputDirectory::OutputDirectory(const Options& opt, const output::Settings& output,
                                  const Comm& comm) {
-  path_ = opt.output_dir.empty() ? output.get<std::string>("directory") : opt.output_dir;
+  path_ = opt.output_dir.empty() ? output.directory : opt.output_dir;
   if (!opt.restart.empty()) source_ = output::parent_directory(opt.restart);
   if (path_.empty())
     throw InputError(opt.input +

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "emcontact/app/checkpoint_check.hpp"
+#include "emcontact/contact/active.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/output/checkpoint.hpp"
 #include "emcontact/parallel.hpp"
@@ -64,16 +65,17 @@ void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::s
   c.V = dofs(*s.V);
   int has = s.last_increment.is_null() ? 0 : 1;
   if (has) c.last_increment = dofs(*s.last_increment);
+  // per entry its packed values, then its normal force
+  constexpr std::size_t stride = contact::kPackedActive + 1;
   std::vector<double> mine;
   for (std::size_t k = 0; k < s.active.size(); ++k) {
-    const auto& a = s.active[k];
-    mine.insert(mine.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1],
-                             k < s.normal_force.size() ? s.normal_force[k] : 0.0});
+    contact::pack(s.active[k], mine);
+    mine.push_back(k < s.normal_force.size() ? s.normal_force[k] : 0.0);
   }
   const auto all = allgather(*sim.disc->comm(), mine);
-  for (std::size_t k = 0; k + 5 < all.size(); k += 6) {
-    c.active.insert(c.active.end(), all.begin() + k, all.begin() + k + 5);
-    c.normal_force.push_back(all[k + 5]);
+  for (std::size_t k = 0; k + stride <= all.size(); k += stride) {
+    c.active.insert(c.active.end(), all.begin() + k, all.begin() + k + contact::kPackedActive);
+    c.normal_force.push_back(all[k + contact::kPackedActive]);
   }
   if (sim.disc->comm()->getRank() == 0) output::write_checkpoint(path, c);
   sim.disc->comm()->barrier();
@@ -116,16 +118,12 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   s.active.clear();
   s.normal_force.clear();
   const int rank = comm.getRank();
-  for (std::size_t k = 0; k + 4 < c.active.size(); k += 5) {
-    contact::Active a;
-    a.slave = static_cast<int>(c.active[k]);
+  for (std::size_t k = 0; k + contact::kPackedActive <= c.active.size();
+       k += contact::kPackedActive) {
+    const contact::Active a = contact::unpack(&c.active[k]);
     if (sim.disc->part().node_owner.at(a.slave) != rank) continue;
-    a.pair = static_cast<int>(c.active[k + 1]);
-    a.facet = static_cast<int>(c.active[k + 2]);
-    a.xi[0] = c.active[k + 3];
-    a.xi[1] = c.active[k + 4];
     s.active.push_back(a);
-    s.normal_force.push_back(c.normal_force.at(k / 5));
+    s.normal_force.push_back(c.normal_force.at(k / contact::kPackedActive));
   }
   // docs/THEORY.md §7.2: which nodes keep their gap follows from u_n and the active set, as at
   // the end of the step that wrote the checkpoint

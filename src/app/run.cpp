@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <memory>
 
+#include "emcontact/app/input_schema.hpp"
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/app/output_dir.hpp"
 #include "emcontact/app/plot.hpp"
@@ -23,7 +24,6 @@
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
-#include "emcontact/input/input.hpp"
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 #include "emcontact/output/atomic_file.hpp"
@@ -196,7 +196,7 @@ double energy_scale(const output::MonitorRow& r0, const output::MonitorRow& r, d
 
 std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   auto sim = std::make_unique<Simulation>();
-  sim->in = input::read_input(opt.input, opt.overrides);
+  sim->in = read_input(opt.input, opt.overrides);
   const auto& P = *sim->in.params;
   auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
   sim->model = fem::build_model(P, std::move(meshes), opt.input);
@@ -213,8 +213,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   // energy-momentum tangent (docs/THEORY.md §1.4) and the frictionless P^T A Pt + X (§5.4) are not
   bool frictionless = false;
   for (const auto& pr : sim->contact->pairs()) frictionless |= pr.kind != contact::Kind::full_stick;
-  if (comm->getRank() == 0 &&
-      P.sublist("Solver").sublist("Linear").get<std::string>("type") == "cg" &&
+  if (comm->getRank() == 0 && sim->solver->assumes_symmetric() &&
       (sim->model.integrator == kernels::Integrator::energy_momentum || frictionless))
     std::fprintf(stderr,
                  "warning: %s: Solver/Linear/type = cg on a non-symmetric Newton matrix "
@@ -239,13 +238,13 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   time::State& state = sim->state;
   time::Stepper& stepper = *sim->stepper;
 
-  const auto& out = P.sublist("Output");
+  const output::Settings out = output::settings(P.sublist("Output"));
   Summary sum;
   const OutputDirectory output_dir(opt, out, *comm);  // locked until the run returns
   sum.output_dir = output_dir.path();
-  Writers w = make_writers(disc, sum.output_dir, out.get<int>("every"));
+  Writers w = make_writers(disc, sum.output_dir, out.every);
   const bool root = comm->getRank() == 0;
-  Progress progress(root && out.get<bool>("progress"), stepper.end());
+  Progress progress(root && out.progress, stepper.end());
 
   sum.tets = model.num_tets();
   sum.nodes = model.num_nodes();
@@ -260,7 +259,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   }
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
-  const int checkpoint_every = out.get<int>("checkpoint every");
+  const int checkpoint_every = out.checkpoint_every;
   sigterm_stops_time_loop();
   // the step of DIR/checkpoint.h5 if this run wrote it or restarted from it, else -1
   long kept = same_file(opt.restart, sum.output_dir + "/checkpoint.h5") ? state.step : -1;
@@ -313,7 +312,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   }
   progress.finish();
   if (root) w.monitors->flush(true);
-  if (root && out.get<bool>("plot")) plot_monitors(sum.output_dir);
+  if (root && out.plot) plot_monitors(sum.output_dir);
   sum.steps = state.step;
   sum.time = state.t;
   if (sim->contact) {  // docs/THEORY.md §8: what each rank holds and receives of contact

@@ -40,8 +40,7 @@ void normal_forces(Refs refs, Positions x0, Positions x1, OwnedValues g, Values 
         double xm0[3][3], xm1[3][3], xh[3][3];
         facet_at(x0, a, xm0);
         facet_at(x1, a, xm1);
-        for (int j = 0; j < 3; ++j)
-          for (int i = 0; i < 3; ++i) xh[j][i] = 0.5 * (xm0[j][i] + xm1[j][i]);
+        kernels::midpoint(xm0, xm1, xh);
         const kernels::Facet f = kernels::facet(xh);
         double s = 0;
         for (int i = 0; i < 3; ++i) s += g(a.dof[i], 0) * f.n[i];

@@ -99,19 +99,16 @@ void Contact::mark_kept_gaps(std::vector<Active>& active, Positions x1) const {
 
 ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
   std::vector<double> send;
-  for (const auto& a : mine)
-    send.insert(send.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1],
-                             double(a.slip)});
+  for (const auto& a : mine) {
+    pack(a, send);
+    send.push_back(double(a.slip));  // docs/THEORY.md §11: stick or slip travels with the entry
+  }
   const auto all = allgather(*disc_.comm(), send);
   ActiveIndex index;
-  for (std::size_t k = 0; k + 5 < all.size(); k += 6) {
-    Active a;
-    a.slave = static_cast<int>(all[k]);
-    a.pair = static_cast<int>(all[k + 1]);
-    a.facet = static_cast<int>(all[k + 2]);
-    a.xi[0] = all[k + 3];
-    a.xi[1] = all[k + 4];
-    a.slip = all[k + 5] != 0;
+  constexpr std::size_t stride = kPackedActive + 1;
+  for (std::size_t k = 0; k + stride <= all.size(); k += stride) {
+    Active a = unpack(&all[k]);
+    a.slip = all[k + kPackedActive] != 0;
     index.by_slave.emplace(a.slave, a);
   }
   return index;

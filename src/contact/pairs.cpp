@@ -1,5 +1,6 @@
 #include "emcontact/contact/pairs.hpp"
 
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -121,9 +122,7 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     Pair p;
     p.name = name;
     const std::string type = c.get<std::string>("type");
-    p.kind = type == "frictionless" ? Kind::frictionless
-             : type == "coulomb"    ? Kind::coulomb
-                                    : Kind::full_stick;
+    p.kind = Teuchos::getIntegralValue<Kind>(c, "type");
     p.mu = c.get<double>("friction coefficient");
     if (p.mu != 0 && p.kind != Kind::coulomb) {
       char mu[32];

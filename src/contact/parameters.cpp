@@ -1,6 +1,7 @@
 // Schema of one contact pair (`Contact/<pair>`).
 #include "emcontact/contact/parameters.hpp"
 
+#include "emcontact/contact/pairs.hpp"
 #include "emcontact/input/validators.hpp"
 
 namespace emc::contact {
@@ -31,7 +32,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
                          "normal gap is constrained)",
                          "Coulomb friction: an active slave node sticks (as full stick) while "
                          "|f_T| <= mu f_N and slides (as frictionless, with the tangential force "
-                         "mu f_N against its slip) otherwise"}));
+                         "mu f_N against its slip) otherwise"},
+                        std::vector<Kind>{Kind::full_stick, Kind::frictionless, Kind::coulomb}));
   pl->set("max penetration", 0.0,
           "Largest penetration [m] at which a slave node is caught by a master facet (a node "
           "deeper than this, e.g. behind a thin master, is not activated); 0: automatic, half "

@@ -245,10 +245,9 @@ FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
   double h = nf ? std::max(b.ext / (3.0 * nf), 1e-12) + 2 * margin : 1.0;
   for (int i = 0; i < 3; ++i) h = std::max(h, (b.hi[i] - b.lo[i]) / 128.0);
   tie_ = 1e-14 * h;
-  // cells 1.5 times that: with the reach lists, measured 10-15% more queries per second in
-  // locate_all than cells of twice that (fewer blocks per query) for a 10% slower build; cells
-  // of h gain little more, lose in random order one by one and build 1.5-2 times slower
-  // (BM_ContactLocateAll, BM_ContactQueries and BM_ContactGridBuild)
+  // cells 1.5 times that: more queries per second in locate_all than cells of twice that (fewer
+  // blocks per query) for a slower build, and than cells of h in random order one by one
+  // (perf/README.md "Constants of the code, measured")
   h *= 1.5;
   shape_.h = h;
   shape_.inv_h = 1 / h;
@@ -322,7 +321,8 @@ void FacetGrid::locate_all(PointsView y, Kokkos::View<Hit*, ExecSpace> hits) con
   const auto order = sort.get_permute_vector();
   const FacetGrid grid = *this;  // by value: never capture `this` in a device lambda
   // the points in that order first, the hits in order, then in place: sequential loads and
-  // stores in the queries (measured faster than reading and writing through order there)
+  // stores in the queries (faster than reading and writing through order there: perf/README.md
+  // "Constants of the code, measured")
   Kokkos::View<double* [3], ExecSpace> ys(Kokkos::ViewAllocateWithoutInitializing("emc::grid_ys"),
                                           n);
   Kokkos::View<Hit*, ExecSpace> hs(Kokkos::ViewAllocateWithoutInitializing("emc::grid_hs"), n);

@@ -9,14 +9,12 @@
 
 namespace emc::fem {
 
-Scatter parse_scatter(const std::string& value) {
+Scatter resolve_scatter(ScatterChoice choice) {
   // auto: atomic adds where they run in loop order anyway (one thread: as reproducible, and
-  // measured faster), the coloured loops where threads would reorder them
-  if (value == "auto") return ExecSpace().concurrency() > 1 ? Scatter::coloured : Scatter::atomic;
-  if (value == "coloured") return Scatter::coloured;
-  if (value == "atomic") return Scatter::atomic;
-  throw InputError("Solver/Assembly/scatter = \"" + value +
-                   "\": allowed values are auto, coloured and atomic");
+  // faster: perf/README.md "OpenMP threads"), the coloured loops where threads would reorder them
+  if (choice == ScatterChoice::automatic)
+    return ExecSpace().concurrency() > 1 ? Scatter::coloured : Scatter::atomic;
+  return choice == ScatterChoice::coloured ? Scatter::coloured : Scatter::atomic;
 }
 
 namespace {

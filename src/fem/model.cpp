@@ -1,6 +1,7 @@
 #include "emcontact/fem/model.hpp"
 
 #include <Teuchos_Array.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include "emcontact/error.hpp"
 #include "kernels/tet4.hpp"
@@ -94,12 +95,12 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
   apply_dirichlet(params, m, file);
   if (params.isSublist("Loads"))
     m.gravity = vec3(params.sublist("Loads"), "gravity", file + ": Loads");
-  const std::string integ = params.sublist("Time").get<std::string>("integrator");
   m.integrator =
-      integ == "midpoint" ? kernels::Integrator::midpoint : kernels::Integrator::energy_momentum;
+      Teuchos::getIntegralValue<kernels::Integrator>(params.sublist("Time"), "integrator");
   if (params.isSublist("Solver") && params.sublist("Solver").isSublist("Assembly")) {
     const auto& a = params.sublist("Solver").sublist("Assembly");
-    if (a.isParameter("scatter")) m.scatter = parse_scatter(a.get<std::string>("scatter"));
+    if (a.isParameter("scatter"))
+      m.scatter = resolve_scatter(Teuchos::getIntegralValue<ScatterChoice>(a, "scatter"));
   }
   return m;
 }

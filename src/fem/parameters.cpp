@@ -1,7 +1,9 @@
 // Schema of the body, load, Dirichlet and assembly parts of the input.
 #include "emcontact/fem/parameters.hpp"
 
+#include "emcontact/fem/scatter.hpp"
 #include "emcontact/input/validators.hpp"
+#include "kernels/em_tet4.hpp"
 
 namespace emc::fem {
 
@@ -38,20 +40,34 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_dirichlet_parameters() {
   return pl;
 }
 
+Teuchos::RCP<const Teuchos::ParameterList> valid_time_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Time"));
+  pl->set("integrator", std::string("energy-momentum"), "Time integrator.",
+          string_choice("integrator", {"energy-momentum", "midpoint"},
+                        {"energy-momentum conserving scheme (conserves energy and momenta)",
+                         "implicit midpoint rule"},
+                        std::vector<kernels::Integrator>{kernels::Integrator::energy_momentum,
+                                                         kernels::Integrator::midpoint}));
+  return pl;
+}
+
 Teuchos::RCP<const Teuchos::ParameterList> valid_assembly_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Assembly"));
-  pl->set("scatter", std::string("auto"),
-          "How the element loops add into the rows their elements share: coloured runs are "
-          "reproducible bit for bit with any number of threads (docs/THEORY.md §9) and measured "
-          "4-7% slower than atomic in Serial (perf/README.md \"OpenMP threads\"); atomic "
-          "runs with several threads differ in the last bits from run to run (with one thread "
-          "they add in loop order, as reproducible).",
-          string_choice("scatter", {"auto", "coloured", "atomic"},
-                        {"coloured if Kokkos runs more than one thread, else atomic",
-                         "one loop per colour of 512-element chunks (chunks of a colour share no "
-                         "node) with plain adds: every row sums in the same order",
-                         "one loop over all elements with atomic adds: with several threads the "
-                         "order of the sums varies, and so does the round-off"}));
+  pl->set(
+      "scatter", std::string("auto"),
+      "How the element loops add into the rows their elements share: coloured runs are "
+      "reproducible bit for bit with any number of threads (docs/THEORY.md §9) and measured "
+      "4-7% slower than atomic in Serial (perf/README.md \"OpenMP threads\"); atomic "
+      "runs with several threads differ in the last bits from run to run (with one thread "
+      "they add in loop order, as reproducible).",
+      string_choice("scatter", {"auto", "coloured", "atomic"},
+                    {"coloured if Kokkos runs more than one thread, else atomic",
+                     "one loop per colour of 512-element chunks (chunks of a colour share no "
+                     "node) with plain adds: every row sums in the same order",
+                     "one loop over all elements with atomic adds: with several threads the "
+                     "order of the sums varies, and so does the round-off"},
+                    std::vector<ScatterChoice>{ScatterChoice::automatic, ScatterChoice::coloured,
+                                               ScatterChoice::atomic}));
   return pl;
 }
 

@@ -119,9 +119,9 @@ std::string example_xml() {
 
 }  // namespace detail
 
-std::string schema_markdown() {
+std::string schema_markdown(const Schema& schema) {
   std::ostringstream os;
-  for (const auto& s : detail::sections()) {
+  for (const auto& s : schema.sections) {
     os << "## " << s.name << "\n\n" << s.doc << "\n\n";
     if (s.named()) {
       detail::document(os, *s.schema, s.name + "/" + s.placeholder, "", 3);

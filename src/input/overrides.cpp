@@ -114,10 +114,10 @@ ParameterList* user_sublist(ParameterList* user, const std::string& name, const 
 }
 
 /// Resolves the section and, for named sections, the existing user-named sublist.
-Target section_target(ParameterList& params, const std::vector<std::string>& parts,
-                      std::size_t& next, const std::string& file, const std::string& text,
+Target section_target(ParameterList& params, const std::vector<Section>& all,
+                      const std::vector<std::string>& parts, std::size_t& next,
+                      const std::string& file, const std::string& text,
                       Teuchos::RCP<const ParameterList>& keep_alive) {
-  const auto all = sections();
   auto s =
       std::find_if(all.begin(), all.end(), [&](const Section& x) { return x.name == parts[0]; });
   if (s == all.end()) {
@@ -230,7 +230,8 @@ any guess_value(const std::string& text) {
   return any(text);
 }
 
-void apply_override(ParameterList& params, const std::string& text, const std::string& file) {
+void apply_override(ParameterList& params, const std::string& text, const std::string& file,
+                    const std::vector<Section>& sections) {
   const auto eq = text.find('=');
   const std::string path = eq == std::string::npos ? "" : trim(text.substr(0, eq));
   if (path.empty())
@@ -243,7 +244,7 @@ void apply_override(ParameterList& params, const std::string& text, const std::s
     refuse(file, text, {"\"" + shorten(path) + "\" is a section", "Section/.../name=value"});
   std::size_t next = 0;
   Teuchos::RCP<const ParameterList> keep_alive;
-  Target t = section_target(params, parts, next, file, text, keep_alive);
+  Target t = section_target(params, sections, parts, next, file, text, keep_alive);
   for (; next + 1 < parts.size(); ++next) t = descend(t, parts[next], file, text);
   set_leaf(t, parts.back(), value, file, text);
 }

@@ -2,6 +2,7 @@
 
 #include <BelosSolverFactory_Tpetra.hpp>
 #include <BelosTpetraAdapter.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
 #include <cmath>
@@ -16,35 +17,40 @@ using Teuchos::rcp;
 
 LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm> comm,
                            const std::string& file)
-    : type_(linear.get<std::string>("type")),
+    : type_(Teuchos::getIntegralValue<SolverType>(linear, "type")),
       prec_type_(linear.get<std::string>("preconditioner")),
       tol_(linear.get<double>("tolerance")),
       check_factor_(linear.get<double>("residual check factor")),
       max_iters_(linear.get<int>("max iterations")),
       reuse_(linear.get<bool>("reuse preconditioner")),
       reuse_rate_(linear.get<double>("factorisation reuse rate")),
-      null_space_(linear.get<std::string>("multigrid near null space")),
-      positions_type_(linear.get<std::string>("multigrid positions")),
+      null_space_(Teuchos::getIntegralValue<NullSpace>(linear, "multigrid near null space")),
+      positions_type_(Teuchos::getIntegralValue<ModePositions>(linear, "multigrid positions")),
       zero_eliminated_(linear.get<bool>("multigrid modes zero at eliminated dofs")),
-      refresh_(linear.get<std::string>("multigrid reuse") == "refresh"),
+      refresh_(Teuchos::getIntegralValue<MultigridReuse>(linear, "multigrid reuse") ==
+               MultigridReuse::refresh),
       refreshable_(prec_type_ == "muelu" && refresh_),
       auto_(prec_type_ == "auto"),
       auto_dofs_(linear.get<int>("multigrid from equations")) {
   if (linear.isSublist("Belos")) belos_ = linear.sublist("Belos");
   if (linear.isSublist("Ifpack2")) ifpack2_ = linear.sublist("Ifpack2");
   if (linear.isSublist("MueLu")) muelu_ = linear.sublist("MueLu");
-  if (type_ == "klu2" && comm->getSize() > 1)
+  if (type_ == SolverType::klu2 && comm->getSize() > 1)
     throw InputError(
         "Solver/Linear/type = klu2 runs on one rank only (Debian's Amesos2 KLU2 is wrong on "
         "2+ ranks); allowed on " +
         std::to_string(comm->getSize()) + " ranks: gmres, cg");
-  if (type_ != "klu2" && type_ != "mumps") check_pass_through(comm, file);
+  if (type_ != SolverType::klu2 && type_ != SolverType::mumps) check_pass_through(comm, file);
 }
 
 std::string LinearSolver::description() const {
-  if (type_ == "klu2") return "Amesos2 KLU2";
-  if (type_ == "mumps") return "MUMPS";
-  return "Belos " + std::string(type_ == "cg" ? "CG" : "GMRES") + " + " + prec_type_;
+  if (type_ == SolverType::klu2) return "Amesos2 KLU2";
+  if (type_ == SolverType::mumps) return "MUMPS";
+  return "Belos " + krylov_name() + " + " + prec_type_;
+}
+
+std::string LinearSolver::krylov_name() const {
+  return type_ == SolverType::cg ? "CG" : "GMRES";
 }
 
 void LinearSolver::matrix_changed() {
@@ -80,7 +86,7 @@ void LinearSolver::build_preconditioner(const RCP<Matrix>& A, std::vector<std::s
 void LinearSolver::set_configuration(const Vector& X, const Vector& u) {
   if (positions_.is_null() || !positions_->getMap()->isSameAs(*X.getMap()))
     positions_ = rcp(new Vector(X.getMap()));
-  positions_->update(1.0, X, positions_type_ == "current" ? 1.0 : 0.0, u, 0.0);
+  positions_->update(1.0, X, positions_type_ == ModePositions::current ? 1.0 : 0.0, u, 0.0);
 }
 
 // The rigid-body modes of the positions last given (none given, e.g. the setup check: MueLu's
@@ -96,7 +102,7 @@ RCP<Teuchos::ParameterList> LinearSolver::belos_parameters(double tol) const {
   auto params = rcp(new Teuchos::ParameterList);
   params->set("Convergence Tolerance", tol);
   params->set("Maximum Iterations", max_iters_);
-  if (type_ == "gmres") {
+  if (type_ == SolverType::gmres) {
     params->set("Num Blocks", std::min(max_iters_, 300));
     params->set("Maximum Restarts", std::max(1, max_iters_ / 300 + 1));
   }
@@ -115,13 +121,13 @@ int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, 
   if (!prec_.is_null()) problem->setRightPrec(prec_);
   problem->setProblem();
   Belos::SolverFactory<double, MultiVector, Operator> factory;
-  auto solver = factory.create(type_ == "cg" ? "CG" : "GMRES", params);
+  auto solver = factory.create(krylov_name(), params);
   solver->setProblem(problem);
   const Belos::ReturnType ret = solver->solve();
   converged = ret == Belos::Converged;
   char buf[160];
   std::snprintf(buf, sizeof buf, "Belos %s returned %s after %d iterations (achieved %.3g)",
-                type_ == "cg" ? "CG" : "GMRES", converged ? "Converged" : "Unconverged",
+                krylov_name().c_str(), converged ? "Converged" : "Unconverged",
                 solver->getNumIters(), solver->achievedTol());
   message = buf;
   return solver->getNumIters();
@@ -144,10 +150,10 @@ SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Ve
   tol = std::max(tol, tol_);
   const double decades = std::max(1.0, -std::log10(tol));
   std::string message;
-  if (type_ == "klu2") {
+  if (type_ == SolverType::klu2) {
     klu2_.solve(A, b, x);
     message = "Amesos2 KLU2 direct solve";
-  } else if (type_ == "mumps") {
+  } else if (type_ == SolverType::mumps) {
     mumps_solve(A, b, x, st, message);  // to tol_: exact like a direct solve
   } else {
     // 0: the last preconditioner as it is; 1: refreshed for A; 2: built fresh for A. A reused

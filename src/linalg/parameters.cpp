@@ -1,4 +1,4 @@
-// Schema of the `Solver` section.
+// Schema of `Solver/Linear`.
 #include "emcontact/linalg/parameters.hpp"
 
 #include "emcontact/input/validators.hpp"
@@ -8,35 +8,20 @@ namespace {
 
 using namespace emc::input;
 
-void set_newton(Teuchos::ParameterList& pl) {
-  pl.set("relative tolerance", 1e-10,
-         "Newton converges when the residual norm falls below this fraction of the "
-         "step's initial residual norm (or below the absolute tolerance).",
-         positive_double());
-  pl.set("absolute tolerance", 0.0,
-         "Absolute tolerance of the Newton residual norm (0 = not used).", double_at_least(0.0));
-  pl.set("max iterations", 25, "Newton iterations per step before the step counts as failed.",
-         int_at_least(1));
-  pl.set("adaptive linear tolerance", true,
-         "Solve each Newton iteration's linear system only to a hundredth of the residual the "
-         "quadratically converging Newton step leaves anyway (estimated from the residual "
-         "history), never tighter than Solver/Linear/tolerance requires and never below the "
-         "round-off floor; false: every solve to Solver/Linear/tolerance.");
-}
-
 void set_linear(Teuchos::ParameterList& pl) {
-  pl.set("type", std::string("gmres"),
-         "Linear solver: gmres; cg only for a symmetric Newton matrix (the midpoint integrator "
-         "without frictionless contact; otherwise the run warns); klu2, direct, one rank only; "
-         "mumps, direct, any number of ranks.",
-         string_choice(
-             "type", {"gmres", "cg", "klu2", "mumps"},
+  set_choice(pl, "type", "gmres",
+             "Linear solver: gmres; cg only for a symmetric Newton matrix (the midpoint integrator "
+             "without frictionless contact; otherwise the run warns); klu2, direct, one rank only; "
+             "mumps, direct, any number of ranks.",
+             {"gmres", "cg", "klu2", "mumps"},
              {"Belos GMRES (iterative)",
               "Belos conjugate gradients (iterative; only for a symmetric Newton matrix: the "
               "mid-point integrator without frictionless contact, otherwise the run warns)",
               "Amesos2 KLU2 (direct, one rank)",
               "MUMPS (direct, any number of ranks; its factors are reused as GMRES's "
-              "preconditioner while they work, see factorisation reuse rate)"}));
+              "preconditioner while they work, see factorisation reuse rate)"},
+             std::vector<SolverType>{SolverType::gmres, SolverType::cg, SolverType::klu2,
+                                     SolverType::mumps});
   pl.set(
       "preconditioner", std::string("auto"),
       "Preconditioner of the iterative solvers (ignored by klu2 and mumps); auto: the faster of "
@@ -72,26 +57,30 @@ void set_linear(Teuchos::ParameterList& pl) {
          "(3 per node), ilu below (measured: ilu faster on the 8k-tet ball, equal at 65k tets "
          "(38k equations), muelu 1.5x faster in flight and 1.2x through an impact at 506k tets).",
          int_at_least(1));
-  pl.set("multigrid near null space", std::string("rigid body modes"),
-         "What the aggregation multigrid (preconditioner = muelu) must represent on coarse levels.",
-         string_choice("multigrid near null space", {"rigid body modes", "translations"},
-                       {"the six rigid-body modes of the node positions (3D elasticity)",
-                        "MueLu's default: one constant vector per dof (the translations)"}));
-  pl.set("multigrid positions", std::string("current"),
-         "The node positions the rigid-body modes are built from, at each multigrid setup.",
-         string_choice("multigrid positions", {"current", "reference"},
-                       {"X + u of the Newton iterate (the deformed body's rotations)",
-                        "the reference coordinates X"}));
+  set_choice(
+      pl, "multigrid near null space", "rigid body modes",
+      "What the aggregation multigrid (preconditioner = muelu) must represent on coarse levels.",
+      {"rigid body modes", "translations"},
+      {"the six rigid-body modes of the node positions (3D elasticity)",
+       "MueLu's default: one constant vector per dof (the translations)"},
+      std::vector<NullSpace>{NullSpace::rigid_body_modes, NullSpace::translations});
+  set_choice(pl, "multigrid positions", "current",
+             "The node positions the rigid-body modes are built from, at each multigrid setup.",
+             {"current", "reference"},
+             {"X + u of the Newton iterate (the deformed body's rotations)",
+              "the reference coordinates X"},
+             std::vector<ModePositions>{ModePositions::current, ModePositions::reference});
   pl.set("multigrid modes zero at eliminated dofs", false,
          "Set the rigid-body modes to zero at eliminated dofs (Dirichlet and contact-slave "
          "dummy rows, which are decoupled from the others); false: the modes as they are.");
-  pl.set("multigrid reuse", std::string("refresh"),
-         "What a new active set (or a reused hierarchy that has become slow) does to the "
-         "multigrid preconditioner before a full rebuild.",
-         string_choice("multigrid reuse", {"refresh", "rebuild"},
-                       {"recompute coarse operators and smoothers, keep aggregates and "
-                        "prolongators (MueLu reuse: type = RP); a full rebuild if still slow",
-                        "a full rebuild"}));
+  set_choice(pl, "multigrid reuse", "refresh",
+             "What a new active set (or a reused hierarchy that has become slow) does to the "
+             "multigrid preconditioner before a full rebuild.",
+             {"refresh", "rebuild"},
+             {"recompute coarse operators and smoothers, keep aggregates and prolongators "
+              "(MueLu reuse: type = RP); a full rebuild if still slow",
+              "a full rebuild"},
+             std::vector<MultigridReuse>{MultigridReuse::refresh, MultigridReuse::rebuild});
   pl.set("residual check factor", 100.0,
          "After each solve the true relative residual must be below factor * tolerance, "
          "else the run fails.",
@@ -109,10 +98,9 @@ void set_linear(Teuchos::ParameterList& pl) {
 
 }  // namespace
 
-Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
-  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Solver"));
-  set_newton(pl->sublist("Newton", false, "Newton iteration of each time step."));
-  set_linear(pl->sublist("Linear", false, "Linear solver of each Newton iteration."));
+Teuchos::RCP<const Teuchos::ParameterList> valid_linear_parameters() {
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Linear"));
+  set_linear(*pl);
   return pl;
 }
 

@@ -93,7 +93,7 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
   } else {
     A = check_preconditioner(comm, where, prec_type_);
   }
-  const std::string name = type_ == "cg" ? "CG" : "GMRES";
+  const std::string name = krylov_name();
   try {
     Belos::SolverFactory<double, MultiVector, Operator> factory;
     auto solver = factory.create(name, belos_parameters(tol_));

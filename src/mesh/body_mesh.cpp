@@ -6,28 +6,16 @@
 #include <sstream>
 
 #include "emcontact/error.hpp"
-#include "src/mesh/internal.hpp"
+#include "emcontact/vec3.hpp"
+#include "internal.hpp"
 
 namespace emc::mesh {
 namespace {
 
-using Vec3 = std::array<double, 3>;
 using Tri = std::array<int, 3>;
 
 Vec3 node(const BodyMesh& m, int i) {
   return {m.X[3 * i], m.X[3 * i + 1], m.X[3 * i + 2]};
-}
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /// One face of a tet: its nodes sorted (the key), the tet and the local index of the node

@@ -6,6 +6,7 @@
 #include <gmsh.h>
 
 #include <Teuchos_Array.hpp>
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -16,12 +17,12 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/input/files.hpp"
-#include "src/mesh/internal.hpp"
+#include "emcontact/vec3.hpp"
+#include "internal.hpp"
 
 namespace emc::mesh {
 namespace {
 
-using Vec3 = std::array<double, 3>;
 using Tri = std::array<int, 3>;
 
 /// Upper bound on the estimated tet count of a built-in mesh (a too small `size` would
@@ -35,22 +36,6 @@ struct Shape {
   std::function<std::string(const std::array<Vec3, 3>&)> surface_of;  ///< "" if unknown
   double volume = 0.0;
 };
-
-Vec3 sub(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double norm(const Vec3& a) {
-  return std::sqrt(dot(a, a));
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 scaled(double s, const Vec3& a) {
-  return {s * a[0], s * a[1], s * a[2]};
-}
 
 std::string str(double v) {
   std::ostringstream s;
@@ -265,7 +250,7 @@ BodyMesh plane_mesh(const Teuchos::ParameterList& p, double size, const std::str
   const Vec3 t2 = cross(n, t1);
   Vec3 origin{};
   for (int d = 0; d < 3; ++d) origin[d] = c[d] - hw * t1[d] - hw * t2[d];
-  const auto cells = detail::grid_cells(2.0 * hw, 2.0 * hw, size);
+  const auto cells = grid_cells(2.0 * hw, 2.0 * hw, size);
   return detail::triangle_grid(origin, scaled(2.0 * hw, t1), scaled(2.0 * hw, t2), cells[0],
                                cells[1]);
 }
@@ -308,7 +293,7 @@ BodyMesh rectangle_mesh(const Teuchos::ParameterList& p, double size, const std:
   a[q1] = extent[q1];
   b[q2] = extent[q2];
   if (axis[flat] < 0.0) std::swap(a, b);  // normal a x b along -e_flat
-  const auto cells = detail::grid_cells(norm(a), norm(b), size);
+  const auto cells = grid_cells(norm(a), norm(b), size);
   return detail::triangle_grid(lo, a, b, cells[0], cells[1]);
 }
 
@@ -390,18 +375,26 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
 BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string& input_dir,
                     const std::string& where) {
   const Teuchos::ParameterList p = validated(mesh_params, where);
-  const std::string type = p.get<std::string>("type");
-  if (type == "file") return mesh_from_file(p, input_dir, where);
+  const MeshType type = Teuchos::getIntegralValue<MeshType>(p, "type");
+  if (type == MeshType::file) return mesh_from_file(p, input_dir, where);
   const double size = positive_param(p, "size", where);
-  if (type == "box") return generate(box_shape(p, where), size, where);
-  if (type == "cylinder") return generate(cylinder_shape(p, where, false), size, where);
-  if (type == "hollow cylinder") return generate(cylinder_shape(p, where, true), size, where);
-  if (type == "spherical shell") return generate(shell_shape(p, where), size, where);
-  if (type == "plane") return plane_mesh(p, size, where);
-  if (type == "rectangle") return rectangle_mesh(p, size, where);
-  throw InputError(where + ": parameter 'type' is '" + type + "'; allowed: 'box', " +
-                   "'cylinder', 'hollow cylinder', 'spherical shell', 'plane', 'rectangle', " +
-                   "'file'");
+  switch (type) {
+    case MeshType::box:
+      return generate(box_shape(p, where), size, where);
+    case MeshType::cylinder:
+      return generate(cylinder_shape(p, where, false), size, where);
+    case MeshType::hollow_cylinder:
+      return generate(cylinder_shape(p, where, true), size, where);
+    case MeshType::spherical_shell:
+      return generate(shell_shape(p, where), size, where);
+    case MeshType::plane:
+      return plane_mesh(p, size, where);
+    case MeshType::rectangle:
+      return rectangle_mesh(p, size, where);
+    case MeshType::file:  // above
+      break;
+  }
+  throw InputError(where + ": parameter 'type': not a shape");
 }
 
 }  // namespace emc::mesh

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "emcontact/error.hpp"
-#include "src/mesh/internal.hpp"
+#include "internal.hpp"
 
 namespace emc::mesh::detail {
 namespace {

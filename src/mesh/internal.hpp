@@ -79,12 +79,6 @@ int local_node(const std::vector<std::size_t>& used_tags, std::size_t tag);
 std::vector<std::array<int, 3>> orient_on_body(const BodyMesh& m,
                                                const std::vector<std::array<int, 3>>& tris);
 
-/// The numbers of cells (n1, n2) of a grid on an l1 x l2 rectangle with cells of edge about
-/// `size`: ceil(l / size) each (at least 1), but at most kMaxGridCells cells in all (200 x 200
-/// on a square): larger, still about square cells if `size` is too small for the extents.
-constexpr double kMaxGridCells = 40000;
-std::array<int, 2> grid_cells(double l1, double l2, double size);
-
 /// A rigid surface (no tets): the n1 x n2 grid of parallelograms spanned by `a` / n1 and
 /// `b` / n2 from `origin` (node (i, j) at origin + i/n1 a + j/n2 b), each cut into two
 /// triangles whose normal (q-p)x(r-p) points along a x b; all triangles in surface `surface`.

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "src/mesh/msh_parse_state.hpp"
+#include "msh_parse_state.hpp"
 
 namespace emc::mesh::msh {
 namespace {

@@ -2,7 +2,7 @@
 // (as gmsh::model::mesh::getElementProperties gives them, Gmsh 4.8).
 #include <algorithm>
 
-#include "src/mesh/msh_parser.hpp"
+#include "msh_parser.hpp"
 
 namespace emc::mesh::msh {
 

@@ -2,8 +2,8 @@
 // Private to the .msh parser: the state of one parse, shared by its section readers.
 #include <string>
 
-#include "src/mesh/msh_parser.hpp"
-#include "src/mesh/msh_scanner.hpp"
+#include "msh_parser.hpp"
+#include "msh_scanner.hpp"
 
 namespace emc::mesh::msh {
 

@@ -1,11 +1,11 @@
 // The .msh 4.1 parser: the section loop, $MeshFormat, $PhysicalNames and $Entities, and the
 // skipping of the sections read_msh does not use. $Nodes and $Elements: msh_blocks.cpp.
-#include "src/mesh/msh_parser.hpp"
+#include "msh_parser.hpp"
 
 #include <sstream>
 
 #include "emcontact/error.hpp"
-#include "src/mesh/msh_parse_state.hpp"
+#include "msh_parse_state.hpp"
 
 namespace emc::mesh::msh {
 namespace {

@@ -11,8 +11,9 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/mesh/generate.hpp"
-#include "src/mesh/internal.hpp"
-#include "src/mesh/msh_parser.hpp"
+#include "emcontact/vec3.hpp"
+#include "internal.hpp"
+#include "msh_parser.hpp"
 
 namespace emc::mesh {
 namespace {
@@ -242,14 +243,12 @@ void check_triangles(const BodyMesh& m, const std::vector<Tri>& tris,
   std::vector<double> areas(tris.size());
   double mean = 0.0;
   for (std::size_t e = 0; e < tris.size(); ++e) {
-    double a[3], b[3];
+    Vec3 a, b;
     for (int d = 0; d < 3; ++d) {
       a[d] = m.X[3 * tris[e][1] + d] - m.X[3 * tris[e][0] + d];
       b[d] = m.X[3 * tris[e][2] + d] - m.X[3 * tris[e][0] + d];
     }
-    const double n[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                         a[0] * b[1] - a[1] * b[0]};
-    areas[e] = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    areas[e] = 0.5 * norm(cross(a, b));
     mean += areas[e] / static_cast<double>(tris.size());
   }
   for (std::size_t e = 0; e < tris.size(); ++e) {

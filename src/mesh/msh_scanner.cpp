@@ -1,5 +1,5 @@
 // Reading ASCII tokens and little-endian binary values of a .msh file, with bounds checks.
-#include "src/mesh/msh_scanner.hpp"
+#include "msh_scanner.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,6 +1,6 @@
 // The valid parameters of a body's `Mesh` sublist (defaults, validators, doc strings). Array
-// lengths and cross-parameter conditions are checked by build_mesh. Teuchos only (emc_params):
-// the input module uses it without the mesh library.
+// lengths and cross-parameter conditions are checked by build_mesh; the app's input schema
+// (emcontact/app/input_schema.hpp) puts it in each body's template.
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <limits>
@@ -30,7 +30,7 @@ void set_point(Teuchos::ParameterList& pl, const std::string& name, double x, do
 
 Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Mesh"));
-  Teuchos::setStringToIntegralParameter<int>(
+  Teuchos::setStringToIntegralParameter<MeshType>(
       "type", "box",
       "Shape of the body: a built-in Gmsh mesh ('box', 'cylinder', 'hollow cylinder', "
       "'spherical shell'), a rigid surface ('plane', 'rectangle': triangles only, fixed in "
@@ -54,7 +54,10 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
           "Gmsh .msh 4.1 file ('file', 'volume'); surfaces: its physical surfaces. A file with "
           "triangles and no tetrahedra is a rigid surface: triangles oriented as in the file, "
           "surfaces: its physical surfaces and 'surface' (all triangles)"),
-      Teuchos::tuple<int>(0, 1, 2, 3, 4, 5, 6), pl.get());
+      Teuchos::tuple<MeshType>(MeshType::box, MeshType::cylinder, MeshType::hollow_cylinder,
+                               MeshType::spherical_shell, MeshType::plane, MeshType::rectangle,
+                               MeshType::file),
+      pl.get());
   pl->set("file", std::string(""),
           "Gmsh .msh 4.1 file (type 'file'), relative to the input file's directory; its "
           "physical surfaces become the named surfaces. A file with triangles and no "

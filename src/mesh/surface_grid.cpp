@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "src/mesh/internal.hpp"
+#include "emcontact/mesh/generate.hpp"
+#include "internal.hpp"
 
-namespace emc::mesh::detail {
+namespace emc::mesh {
 namespace {
 
 /// ceil(l / h), at least 1, as a double (no integer overflow for a tiny h).
@@ -24,6 +25,10 @@ std::array<int, 2> grid_cells(double l1, double l2, double size) {
   }
   return {static_cast<int>(cells_along(l1, h)), static_cast<int>(cells_along(l2, h))};
 }
+
+}  // namespace emc::mesh
+
+namespace emc::mesh::detail {
 
 BodyMesh triangle_grid(const std::array<double, 3>& origin, const std::array<double, 3>& a,
                        const std::array<double, 3>& b, int n1, int n2) {

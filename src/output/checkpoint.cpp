@@ -5,10 +5,10 @@
 
 #include <cmath>
 
+#include "checkpoint_meta.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/input/files.hpp"
 #include "emcontact/output/hdf5_file.hpp"
-#include "src/output/checkpoint_meta.hpp"
 
 namespace emc::output {
 

@@ -1,6 +1,6 @@
 // What makes a checkpoint trustworthy: the fingerprint of the model it was written for and a
 // checksum of everything stored (a flipped byte or a foreign model is refused on restart).
-#include "src/output/checkpoint_meta.hpp"
+#include "checkpoint_meta.hpp"
 
 #include <cstring>
 

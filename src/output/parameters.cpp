@@ -1,4 +1,4 @@
-// Schema of the `Output` section.
+// Schema of the `Output` section, and its values.
 #include "emcontact/output/parameters.hpp"
 
 #include "emcontact/input/validators.hpp"
@@ -23,6 +23,16 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
           "energy, L and J against time) with tools/plot_monitors.py (Debian's /usr/bin/python3 "
           "and matplotlib); if plotting fails the run only warns.");
   return pl;
+}
+
+Settings settings(const Teuchos::ParameterList& output) {
+  Settings s;
+  s.directory = output.get<std::string>("directory");
+  s.every = output.get<int>("every");
+  s.progress = output.get<bool>("progress");
+  s.checkpoint_every = output.get<int>("checkpoint every");
+  s.plot = output.get<bool>("plot");
+  return s;
 }
 
 }  // namespace emc::output

@@ -37,10 +37,10 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
 // sigma of the residual the Newton step leaves anyway. Near the solution that is C r_k^2
 // (quadratic convergence, C = r_k / r_{k-1}^2 measured in this step or, at the first iterate,
 // in the last step), never below the round-off floor. So the
-// iterates, and the converged residual, are those of exact solves to within sigma (measured:
-// 5% with sigma = 0.01, test_newton), at a fraction of the Krylov iterations of solves to the
-// input's tolerance, which stays the lower bound. An overestimated C loosens one solve, whose
-// residual then shows a C smaller by about sigma: the estimate recovers.
+// iterates, and the converged residual, are those of exact solves to within sigma (test_newton;
+// perf/README.md "Constants of the code, measured"), at a fraction of the Krylov iterations of
+// solves to the input's tolerance, which stays the lower bound. An overestimated C loosens one
+// solve, whose residual then shows a C smaller by about sigma: the estimate recovers.
 double Newton::predicted_next(const std::vector<double>& r) const {
   const std::size_t k = r.size() - 1;
   const double C = k >= 1 ? r[k] / (r[k - 1] * r[k - 1]) : contraction_;

@@ -1,4 +1,4 @@
-// Schema of the `Time` section.
+// Schema of the `Time` section and of `Solver/Newton`.
 #include "emcontact/time/parameters.hpp"
 
 #include <cmath>
@@ -17,15 +17,30 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
           "1e9 steps: dt >= end / 1e9.",
           time_range);
   pl->set("end", 1.0, "End time [s] (the run starts at t = 0); must be >= dt.", time_range);
-  pl->set("integrator", std::string("energy-momentum"), "Time integrator.",
-          string_choice("integrator", {"energy-momentum", "midpoint"},
-                        {"energy-momentum conserving scheme (conserves energy and momenta)",
-                         "implicit midpoint rule"}));
   pl->set("max step cuts", 6, "How many times a failed step may halve dt before the run fails.",
           int_range(0, 20));
   pl->set("grow after", 4,
           "Successful sub-steps after which dt doubles back toward the nominal dt.",
           int_at_least(1));
+  return pl;
+}
+
+Teuchos::RCP<const Teuchos::ParameterList> valid_newton_parameters() {
+  using namespace emc::input;
+  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Newton"));
+  pl->set("relative tolerance", 1e-10,
+          "Newton converges when the residual norm falls below this fraction of the "
+          "step's initial residual norm (or below the absolute tolerance).",
+          positive_double());
+  pl->set("absolute tolerance", 0.0,
+          "Absolute tolerance of the Newton residual norm (0 = not used).", double_at_least(0.0));
+  pl->set("max iterations", 25, "Newton iterations per step before the step counts as failed.",
+          int_at_least(1));
+  pl->set("adaptive linear tolerance", true,
+          "Solve each Newton iteration's linear system only to a hundredth of the residual the "
+          "quadratically converging Newton step leaves anyway (estimated from the residual "
+          "history), never tighter than Solver/Linear/tolerance requires and never below the "
+          "round-off floor; false: every solve to Solver/Linear/tolerance.");
   return pl;
 }
 

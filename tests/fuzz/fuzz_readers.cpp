@@ -4,10 +4,10 @@
 //
 // Each of COUNT mutants of the seed files (tests/fuzz/mutator.hpp, deterministic in SEED) is
 // written to WORKDIR/current.<kind> and read by the real reader:
-//   xml  emc::input::read_input (Teuchos XML, schema validation, cross-checks);
+//   xml  emc::app::read_input (Teuchos XML, schema validation, cross-checks);
 //   msh  emc::mesh::read_msh (our strict parser), then the checks and derived data every run uses
 //        (boundary triangles, surface nodes);
-//   set  emc::input::read_input with a mutated --set override of the first seed file.
+//   set  emc::app::read_input with a mutated --set override of the first seed file.
 // A mutant must either be accepted or be refused with emc::InputError whose message names the
 // file; any other exception is a failure (the mutant is kept as WORKDIR/failure-N.<kind>), and a
 // crash, or a hang (ctest's TIMEOUT), fails the ctest (current.<kind> is then the reproducer).
@@ -20,8 +20,8 @@
 #include <map>
 #include <sstream>
 
+#include "emcontact/app/input_schema.hpp"
 #include "emcontact/error.hpp"
-#include "emcontact/input/input.hpp"
 #include "emcontact/mesh/body_mesh.hpp"
 #include "emcontact/mesh/generate.hpp"
 #include "fuzz/mutator.hpp"
@@ -43,11 +43,11 @@ void spit(const std::string& path, const std::string& text) {
 /// Reads one mutant with the reader of `kind`; returns true if accepted.
 bool read_one(const std::string& kind, const std::string& file, const std::string& set_text) {
   if (kind == "xml") {
-    emc::input::read_input(file, {});
+    emc::app::read_input(file, {});
     return true;
   }
   if (kind == "set") {
-    emc::input::read_input(file, {set_text});
+    emc::app::read_input(file, {set_text});
     return true;
   }
   const emc::mesh::BodyMesh m = emc::mesh::read_msh(file, "", "fuzz");

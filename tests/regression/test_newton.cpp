@@ -6,9 +6,9 @@
 #include <Tpetra_Core.hpp>
 #include <cmath>
 
+#include "emcontact/app/input_schema.hpp"
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/fem/discretization.hpp"
-#include "emcontact/input/input.hpp"
 #include "emcontact/time/newton.hpp"
 
 namespace {
@@ -26,9 +26,9 @@ Teuchos::RCP<emc::Vector> owned_initial_velocity(const emc::fem::Discretization&
 emc::fem::Model large_step_model(const Teuchos::RCP<const emc::Comm>& comm,
                                  Teuchos::RCP<Teuchos::ParameterList>* params = nullptr) {
   const std::string file = std::string(EMC_TEST_DIR) + "/tumbling.xml";
-  const auto in = emc::input::read_input(
-      file, {"Time/dt=0.05", "Bodies/block/Initial/angular velocity={0,3,20}",
-             "Bodies/block/Initial/velocity={0,0,0}"});
+  const auto in =
+      emc::app::read_input(file, {"Time/dt=0.05", "Bodies/block/Initial/angular velocity={0,3,20}",
+                                  "Bodies/block/Initial/velocity={0,0,0}"});
   auto meshes = emc::app::build_meshes(*in.params, in.dir, file, *comm);
   if (params) *params = in.params;
   return emc::fem::build_model(*in.params, std::move(meshes), file);

@@ -1,10 +1,10 @@
 #pragma once
 // The output directory of a run (--output or Output/directory): checked, created, locked.
-#include <Teuchos_ParameterList.hpp>
 #include <string>
 
 #include "emcontact/app/run.hpp"
 #include "emcontact/output/directory.hpp"
+#include "emcontact/output/parameters.hpp"
 #include "emcontact/types.hpp"
 
 namespace emc::app {
@@ -16,7 +16,7 @@ namespace emc::app {
 /// Collective: on a refusal every rank throws emc::Error with rank 0's message.
 class OutputDirectory {
  public:
-  OutputDirectory(const Options& opt, const Teuchos::ParameterList& output, const Comm& comm);
+  OutputDirectory(const Options& opt, const output::Settings& output, const Comm& comm);
   const std::string& path() const { return path_; }
   /// The directory of the --restart checkpoint: the monitors up to its step are read there.
   const std::string& restart_source() const { return source_; }

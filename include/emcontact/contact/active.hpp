@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <vector>
 
 #include "emcontact/contact/pairs.hpp"
 #include "kernels/math.hpp"
@@ -34,6 +35,26 @@ inline bool slides(const Pair& p, const Active& a) {
 }
 inline bool sticks(const Pair& p, const Active& a) {
   return !slides(p, a);
+}
+
+/// The doubles an entry packs into (slave, pair, facet, xi, eta): how it travels between ranks
+/// and into the checkpoint (output::Checkpoint::active).
+constexpr std::size_t kPackedActive = 5;
+
+/// Appends the kPackedActive values of `a` to `out`.
+inline void pack(const Active& a, std::vector<double>& out) {
+  out.insert(out.end(), {double(a.slave), double(a.pair), double(a.facet), a.xi[0], a.xi[1]});
+}
+
+/// The entry packed at `p` (kPackedActive values).
+inline Active unpack(const double* p) {
+  Active a;
+  a.slave = static_cast<int>(p[0]);
+  a.pair = static_cast<int>(p[1]);
+  a.facet = static_cast<int>(p[2]);
+  a.xi[0] = p[3];
+  a.xi[1] = p[4];
+  return a;
 }
 
 /// Every rank's active entries by slave node (replicated), to compose chains (§3): a master

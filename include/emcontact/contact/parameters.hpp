@@ -1,6 +1,6 @@
 #pragma once
-// The `Contact` part of the input: declared here, validated by the input module (which also
-// cross-checks the body names, see emc::input::read_input).
+// The `Contact` part of the input: declared here, put in the input's schema by the app (which
+// also cross-checks the body names, see emc::app::input_schema).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::contact {
@@ -10,7 +10,8 @@ namespace emc::contact {
 ///   named surfaces; a deformable body (with tets).
 /// - `master` (string, required, default ""): a body name or `body/surface`; deformable or a
 ///   rigid surface body; not the slave's body.
-/// - `type` (string): "full stick" (default, integral value 0) or "frictionless" (1).
+/// - `type` (string): "full stick" (default) or "frictionless"; its validator gives the Kind
+///   (Teuchos::getIntegralValue<Kind>).
 /// - `max penetration` (double >= 0, default 0 = automatic: half the mean edge of the master's
 ///   facets): a slave node is activated only while its penetration is below it.
 Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters();

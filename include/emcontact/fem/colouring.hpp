@@ -44,8 +44,8 @@ struct Colouring {
 Colouring colour_chunks(const Kokkos::View<const int* [4], Kokkos::HostSpace>& node_lid,
                         int num_nodes, int chunk);
 
-/// The chunk length of the assembly: measured in perf/README.md "OpenMP threads" (BM_Assembly
-/// with chunks of 1 element: 4x slower in Serial than chunks of this length).
+/// The chunk length of the assembly: measured against chunks of 1, 64, 256 and 2048 elements in
+/// perf/README.md "OpenMP threads" (BM_Assembly).
 constexpr int assembly_chunk = 512;
 
 }  // namespace emc::fem

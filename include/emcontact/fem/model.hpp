@@ -34,7 +34,7 @@ struct Model {
   std::vector<double> rigid_X;  ///< nodes of the rigid surface bodies, 3 each
   std::array<double, 3> gravity{};
   kernels::Integrator integrator = kernels::Integrator::energy_momentum;
-  Scatter scatter = parse_scatter("auto");  ///< Solver/Assembly/scatter
+  Scatter scatter = resolve_scatter(ScatterChoice::automatic);  ///< Solver/Assembly/scatter
 
   int num_nodes() const { return static_cast<int>(X.size() / 3); }
   int num_tets() const { return static_cast<int>(tets.size() / 4); }

@@ -1,6 +1,7 @@
 #pragma once
-// The body, load, Dirichlet and assembly parts of the input: declared here, validated by the input
-// module (which adds each body's `Mesh` sublist from emc::mesh::valid_mesh_parameters()).
+// The body, load, Dirichlet and assembly parts of the input: declared here, put in the input's
+// schema by the app (which adds each body's `Mesh` sublist from
+// emc::mesh::valid_mesh_parameters()).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::fem {
@@ -17,6 +18,10 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_load_parameters();
 /// (a named surface of that body's mesh); both required (default ""). The displacement of the
 /// surface's nodes is fixed to zero.
 Teuchos::RCP<const Teuchos::ParameterList> valid_dirichlet_parameters();
+
+/// The part of `Time` the fem module reads (the element kernels' integrator): `integrator`
+/// ("energy-momentum" or "midpoint"; its validator gives the kernels::Integrator).
+Teuchos::RCP<const Teuchos::ParameterList> valid_time_parameters();
 
 /// Valid parameters of `Solver/Assembly`: `scatter` (coloured or atomic, see
 /// emcontact/fem/scatter.hpp).

@@ -1,7 +1,5 @@
 #pragma once
 // How the element loops add into shared rows (input `Solver/Assembly/scatter`).
-#include <string>
-
 namespace emc::fem {
 
 /// coloured: one loop per element colour with plain adds, reproducible bit for bit with any
@@ -9,7 +7,11 @@ namespace emc::fem {
 /// runs (include/emcontact/fem/colouring.hpp).
 enum class Scatter { coloured, atomic };
 
-/// `coloured` or `atomic`; anything else throws an InputError naming the parameter.
-Scatter parse_scatter(const std::string& value);
+/// The values of `Solver/Assembly/scatter` (its validator's, Teuchos::getIntegralValue).
+enum class ScatterChoice { automatic, coloured, atomic };
+
+/// The scatter of a choice: `automatic` is coloured if Kokkos runs more than one thread, else
+/// atomic.
+Scatter resolve_scatter(ScatterChoice choice);
 
 }  // namespace emc::fem

@@ -1,25 +1,14 @@
 #pragma once
-// Internals of the input module, declared for its sources, the docs generator and unit tests.
+// Internals of the input module, declared for its sources, the app's cross-checks of the input
+// (emcontact/app/input_schema.hpp) and unit tests.
 #include <Teuchos_ParameterList.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "emcontact/input/input.hpp"
+
 namespace emc::input::detail {
-
-/// A top-level section of the input. A fixed section (`Time`) is validated against `schema`;
-/// a named section (`Bodies`, `Dirichlet`, `Contact`) holds user-named sublists, each validated
-/// against the template `schema` and documented as `<name>/<placeholder>`.
-struct Section {
-  std::string name;
-  std::string doc;
-  Teuchos::RCP<const Teuchos::ParameterList> schema;
-  std::string placeholder;  ///< "" for a fixed section, else e.g. "<body>"
-  bool named() const { return !placeholder.empty(); }
-};
-
-/// The sections, in documentation order (a new module adds its section here).
-std::vector<Section> sections();
 
 /// What is wrong with one value, and what is allowed instead.
 struct Problem {
@@ -76,9 +65,10 @@ Teuchos::RCP<Teuchos::ParameterList> read_xml(const std::string& file);
 Teuchos::any parse_value(const std::string& text, const Teuchos::any& like);
 /// Parses a pass-through value whose type is unknown: int, double, bool, else string.
 Teuchos::any guess_value(const std::string& text);
-/// Applies one "Section/Sub/name=value" override to the raw input `params`.
+/// Applies one "Section/Sub/name=value" override to the raw input `params` (whose sections
+/// are `sections`).
 void apply_override(Teuchos::ParameterList& params, const std::string& override_text,
-                    const std::string& file);
+                    const std::string& file, const std::vector<Section>& sections);
 
 // --- documentation (docs.cpp) ---
 

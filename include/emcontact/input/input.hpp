@@ -1,10 +1,32 @@
 #pragma once
-// Reading and validating the Teuchos XML input (the app's only entry to parameters).
+// Reading and validating the Teuchos XML input against a schema. The input module knows no
+// other module: each module declares its parameters, the app assembles them into the whole
+// schema (emcontact/app/input_schema.hpp) and reads the input with it.
 #include <Teuchos_ParameterList.hpp>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace emc::input {
+
+/// A top-level section of the input. A fixed section (`Time`) is validated against `schema`;
+/// a named section (`Bodies`, `Dirichlet`, `Contact`) holds user-named sublists, each validated
+/// against the template `schema` and documented as `<name>/<placeholder>`.
+struct Section {
+  std::string name;
+  std::string doc;
+  Teuchos::RCP<const Teuchos::ParameterList> schema;
+  std::string placeholder;  ///< "" for a fixed section, else e.g. "<body>"
+  bool named() const { return !placeholder.empty(); }
+};
+
+/// The whole input: its sections in documentation order, and the checks across parameters
+/// (e.g. a contact pair names existing bodies) run once every section is validated and filled
+/// in; they throw emc::InputError (see detail::fail).
+struct Schema {
+  std::vector<Section> sections;
+  std::function<void(const Teuchos::ParameterList& params, const std::string& file)> check;
+};
 
 struct Input {
   Teuchos::RCP<Teuchos::ParameterList> params;  ///< validated, defaults filled in
@@ -13,19 +35,19 @@ struct Input {
 };
 
 /// Reads `file`, applies `overrides` ("Section/Sub/name=value", value parsed with the type the
-/// schema gives that parameter), validates every sublist (Bodies/<any>, Dirichlet/<any>,
-/// Contact/<any> against their templates), fills defaults and cross-checks: Dirichlet and
-/// Contact name existing bodies, a contact pair's slave is not a rigid surface type (`plane`,
-/// `rectangle`) and not on the master's body, a rigid surface body has zero Initial velocities.
-/// Throws emc::InputError naming the file, the parameter path and what is allowed. Pure function of
+/// schema gives that parameter), validates every section (each user-named sublist of a named
+/// section against its template), fills defaults and runs `schema.check`. Throws
+/// emc::InputError naming the file, the parameter path and what is allowed. Pure function of
 /// its arguments (call on every rank).
-Input read_input(const std::string& file, const std::vector<std::string>& overrides);
+Input read_input(const std::string& file, const std::vector<std::string>& overrides,
+                 const Schema& schema);
 
-/// The whole schema, with one example entry for the user-named sublists ("Bodies/<body>",
-/// "Dirichlet/<condition>", "Contact/<pair>"); used to generate inputs/README.md.
-Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+/// The whole schema as one list, with one example entry for the user-named sublists
+/// ("Bodies/<body>", "Dirichlet/<condition>", "Contact/<pair>").
+Teuchos::RCP<const Teuchos::ParameterList> valid_parameters(const Schema& schema);
 
-/// Markdown documentation of every parameter (name, type, default, allowed values, doc string).
-std::string schema_markdown();
+/// Markdown documentation of every parameter (name, type, default, allowed values, doc string),
+/// section by section, then an example input; used to generate inputs/README.md.
+std::string schema_markdown(const Schema& schema);
 
 }  // namespace emc::input

@@ -1,6 +1,6 @@
 #pragma once
-// Small factories for the Teuchos validators the parameter schemas use (header only, so the
-// Teuchos-only emc_params library can use them). Teuchos number ranges are inclusive: a strict
+// Small factories for the Teuchos validators the parameter schemas use (header only: every module
+// declares its parameters with them). Teuchos number ranges are inclusive: a strict
 // bound is the neighbouring double (the input module prints it back as "> 0", "< 0.5").
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <cmath>
@@ -49,15 +49,33 @@ inline ValidatorPtr int_at_least(int lo) {
 }
 
 /// One of the given strings (case-sensitive) for the parameter `name`; `docs` documents each
-/// choice. The integral value of choice i is i (Teuchos::getIntegralValue<int>).
-inline ValidatorPtr string_choice(const std::string& name, const std::vector<std::string>& choices,
-                                  const std::vector<std::string>& docs) {
+/// choice. The value of choice i is values[i]: the module that reads the parameter takes it with
+/// Teuchos::getIntegralValue<E>(list, name) (the list validated against this schema).
+template <class E>
+ValidatorPtr string_choice(const std::string& name, const std::vector<std::string>& choices,
+                           const std::vector<std::string>& docs, const std::vector<E>& values) {
   const Teuchos::Array<std::string> strings(choices.begin(), choices.end());
   const Teuchos::Array<std::string> strings_docs(docs.begin(), docs.end());
-  Teuchos::Array<int> values;
+  const Teuchos::Array<E> integral(values.begin(), values.end());
+  return Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<E>(
+      strings(), strings_docs(), integral(), name));
+}
+
+/// Sets the string parameter `name` of `pl` (default `value`, documented `doc`) to one of
+/// `choices`, documented by `docs`, whose values are `values` (string_choice above).
+template <class E>
+void set_choice(Teuchos::ParameterList& pl, const std::string& name, const std::string& value,
+                const std::string& doc, const std::vector<std::string>& choices,
+                const std::vector<std::string>& docs, const std::vector<E>& values) {
+  pl.set(name, value, doc, string_choice(name, choices, docs, values));
+}
+
+/// As above, the value of choice i being i (Teuchos::getIntegralValue<int>).
+inline ValidatorPtr string_choice(const std::string& name, const std::vector<std::string>& choices,
+                                  const std::vector<std::string>& docs) {
+  std::vector<int> values;
   for (int i = 0; i < static_cast<int>(choices.size()); ++i) values.push_back(i);
-  return Teuchos::rcp(new Teuchos::StringToIntegralParameterEntryValidator<int>(
-      strings(), strings_docs(), values(), name));
+  return string_choice(name, choices, docs, values);
 }
 
 /// Any string (the meaning is checked later, e.g. a body or surface name).

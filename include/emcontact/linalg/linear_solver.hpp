@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "emcontact/error.hpp"
+#include "emcontact/linalg/parameters.hpp"
 #include "emcontact/types.hpp"
 
 namespace emc::linalg {
@@ -84,9 +85,11 @@ class LinearSolver {
   /// solve, or with `multigrid reuse = refresh` the multigrid hierarchy's coarse operators and
   /// smoothers recomputed for it (its aggregates and prolongators kept).
   void matrix_changed();
+  /// True for a solver that assumes a symmetric matrix (Solver/Linear/type = cg).
+  bool assumes_symmetric() const { return type_ == SolverType::cg; }
   /// True when the preconditioner is built from node positions (multigrid's rigid-body modes).
   bool uses_positions() const {
-    return (prec_type_ == "muelu" || auto_) && null_space_ == "rigid body modes";
+    return (prec_type_ == "muelu" || auto_) && null_space_ == NullSpace::rigid_body_modes;
   }
   /// The configuration of the next solves: reference positions X (coordinate c of node n at dof
   /// 3 n + c, the matrix's row map) and displacements u; the next preconditioner built takes
@@ -95,7 +98,8 @@ class LinearSolver {
   std::string description() const;
 
  private:
-  std::string type_, prec_type_;
+  SolverType type_;
+  std::string prec_type_;
   double tol_, check_factor_;
   int max_iters_;
   bool reuse_;
@@ -104,20 +108,23 @@ class LinearSolver {
   DirectKlu2 klu2_;
   std::shared_ptr<DirectMumps> mumps_;  ///< type mumps; prec_ is then its factors' inverse
   double reuse_rate_;
-  double fresh_rate_ = 0;  ///< Krylov iterations per decade of a fresh preconditioner
-  std::string null_space_, positions_type_;  ///< multigrid near null space and its positions
-  bool zero_eliminated_ = false;             ///< modes zero at eliminated (decoupled) dofs
-  bool refresh_ = false;                     ///< multigrid reuse = refresh (if muelu)
-  bool refreshable_ = false;                 ///< refresh_ and the preconditioner is muelu
-  bool auto_ = false;                        ///< preconditioner = auto: chosen by size
-  long long auto_dofs_ = 0;                  ///< auto: muelu from this many equations
-  bool stale_ = false;                       ///< prec_ is for an earlier structure: refresh
-  Teuchos::RCP<Vector> positions_;           ///< node positions for the next multigrid build
+  double fresh_rate_ = 0;           ///< Krylov iterations per decade of a fresh preconditioner
+  NullSpace null_space_;            ///< multigrid near null space
+  ModePositions positions_type_;    ///< the positions of the rigid-body modes
+  bool zero_eliminated_ = false;    ///< modes zero at eliminated (decoupled) dofs
+  bool refresh_ = false;            ///< multigrid reuse = refresh (if muelu)
+  bool refreshable_ = false;        ///< refresh_ and the preconditioner is muelu
+  bool auto_ = false;               ///< preconditioner = auto: chosen by size
+  long long auto_dofs_ = 0;         ///< auto: muelu from this many equations
+  bool stale_ = false;              ///< prec_ is for an earlier structure: refresh
+  Teuchos::RCP<Vector> positions_;  ///< node positions for the next multigrid build
 
   SolveStats checked_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol);
   int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,
                   bool& converged, std::string& message);
   Teuchos::RCP<Teuchos::ParameterList> belos_parameters(double tol) const;
+  /// Belos' name of the iterative solver: "CG" or "GMRES".
+  std::string krylov_name() const;
   void mumps_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, SolveStats& st,
                    std::string& message);
   /// Builds (level 2) or refreshes (level 1) the preconditioner for A.

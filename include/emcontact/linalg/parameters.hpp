@@ -1,15 +1,23 @@
 #pragma once
-// The `Solver` section of the input (Newton and linear solver): declared here, validated by
-// the input module.
+// `Solver/Linear` of the input (the linear solver): declared here, put in the input's schema by
+// the app (emc::app::input_schema).
 #include <Teuchos_ParameterList.hpp>
 
 namespace emc::linalg {
 
-/// Valid parameters of `Solver`: sublist `Newton` (`relative tolerance`, `absolute tolerance`,
-/// `max iterations`) and sublist `Linear` (`type`: gmres | cg | klu2 | mumps, `preconditioner`:
-/// ilu | schwarz | muelu | none, `tolerance`, `max iterations`, `reuse preconditioner`,
-/// `factorisation reuse rate`, `residual check factor`, and the pass-through sublists `Belos`,
-/// `Ifpack2`, `MueLu` whose contents go unchanged to Trilinos).
-Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
+/// The values of the choices of `Solver/Linear` (their validators', read with
+/// Teuchos::getIntegralValue): `type`, `multigrid near null space`, `multigrid positions`,
+/// `multigrid reuse`. (`preconditioner` is kept by name: `auto` becomes `ilu` or `muelu`.)
+enum class SolverType { gmres, cg, klu2, mumps };
+enum class NullSpace { rigid_body_modes, translations };
+enum class ModePositions { current, reference };
+enum class MultigridReuse { refresh, rebuild };
+
+/// Valid parameters of `Solver/Linear` (read by LinearSolver): `type` (gmres | cg | klu2 |
+/// mumps), `preconditioner` (auto | ilu | schwarz | muelu | none), `tolerance`, `max
+/// iterations`, `reuse preconditioner`, `factorisation reuse rate`, the multigrid choices,
+/// `residual check factor`, and the pass-through sublists `Belos`, `Ifpack2`, `MueLu` whose
+/// contents go unchanged to Trilinos.
+Teuchos::RCP<const Teuchos::ParameterList> valid_linear_parameters();
 
 }  // namespace emc::linalg

@@ -2,10 +2,14 @@
 // Built-in meshes (through Gmsh's C++ API, OpenCASCADE kernel), the rigid surfaces (`plane`,
 // `rectangle`) and the reader of Gmsh .msh files (our own strict parser).
 #include <Teuchos_ParameterList.hpp>
+#include <array>
 
 #include "emcontact/mesh/body_mesh.hpp"
 
 namespace emc::mesh {
+
+/// The values of `Mesh/type` (its validator's: Teuchos::getIntegralValue<MeshType>).
+enum class MeshType { box, cylinder, hollow_cylinder, spherical_shell, plane, rectangle, file };
 
 /// Valid parameters of a body's `Mesh` sublist (with defaults, validators, doc strings).
 Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters();
@@ -27,5 +31,11 @@ BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string
 /// surface: the triangles' nodes, no tets, every physical surface by name plus `surface` (all
 /// triangles), oriented as in the file.
 BodyMesh read_msh(const std::string& file, const std::string& volume, const std::string& where);
+
+/// The numbers of cells (n1, n2) of a grid on an l1 x l2 rectangle with cells of edge about
+/// `size`: ceil(l / size) each (at least 1), but at most kMaxGridCells cells in all (200 x 200
+/// on a square): larger, still about square cells if `size` is too small for the extents.
+constexpr double kMaxGridCells = 40000;
+std::array<int, 2> grid_cells(double l1, double l2, double size);
 
 }  // namespace emc::mesh

@@ -109,8 +109,7 @@ TEST(ActiveKernels, NormalForcesEqualAHostLoop) {
     double xm0[3][3], xm1[3][3], xh[3][3];
     e.facet(e.x0, e.host[q], xm0);
     e.facet(e.x1, e.host[q], xm1);
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) xh[j][i] = 0.5 * (xm0[j][i] + xm1[j][i]);
+    k::midpoint(xm0, xm1, xh);
     const k::Facet f = k::facet(xh);
     double s = 0;
     for (int i = 0; i < 3; ++i) s += e.gval(e.host[q].dof[i]) * f.n[i];

@@ -1,5 +1,6 @@
-// Unit tests of the input module: defaults, one-paragraph errors (file, path, allowed),
-// overrides, pass-through sublists, cross checks and the generated documentation.
+// Unit tests of the input module, with the app's whole schema: defaults, one-paragraph errors
+// (file, path, allowed), overrides, pass-through sublists, cross checks and the generated
+// documentation.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,14 +10,17 @@
 #include <string>
 #include <vector>
 
+#include "emcontact/app/input_schema.hpp"
+#include "emcontact/contact/pairs.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/input.hpp"
+#include "kernels/em_tet4.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using emc::input::read_input;
+using emc::app::read_input;
 using Teuchos::Array;
 using Teuchos::ParameterList;
 
@@ -157,7 +161,9 @@ TEST_F(InputTest, IntegralValueOfChoices) {
   Xml x;
   x.time += R"(<Parameter name="integrator" type="string" value="midpoint"/>)";
   const auto in = read(x);
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(in.params->sublist("Time"), "integrator"), 1);
+  EXPECT_EQ(
+      Teuchos::getIntegralValue<emc::kernels::Integrator>(in.params->sublist("Time"), "integrator"),
+      emc::kernels::Integrator::midpoint);
 }
 
 // ---------------------------------------------------------------- bad values
@@ -330,7 +336,8 @@ TEST_F(InputTest, ContactPairDefaults) {
   EXPECT_EQ(pair.get<std::string>("slave"), "ball");
   EXPECT_EQ(pair.get<std::string>("master"), "floor");
   EXPECT_EQ(pair.get<std::string>("type"), "full stick");
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 0);
+  EXPECT_EQ(Teuchos::getIntegralValue<emc::contact::Kind>(pair, "type"),
+            emc::contact::Kind::full_stick);
   EXPECT_EQ(pair.get<double>("max penetration"), 0.0);
   // The rigid body keeps the defaults of what it does not need.
   const auto& floor = in.params->sublist("Bodies").sublist("floor");
@@ -352,7 +359,8 @@ TEST_F(InputTest, ContactPairWithSurfacesAndEveryParameter) {
   const auto& pair = in.params->sublist("Contact").sublist("drop");
   EXPECT_EQ(pair.get<std::string>("slave"), "ball/zmin");
   EXPECT_EQ(pair.get<std::string>("master"), "plate/zmax");
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 1);
+  EXPECT_EQ(Teuchos::getIntegralValue<emc::contact::Kind>(pair, "type"),
+            emc::contact::Kind::frictionless);
   EXPECT_EQ(pair.get<double>("max penetration"), 0.01);
 }
 
@@ -435,7 +443,8 @@ TEST_F(InputTest, OverrideOfContactPair) {
                         "Contact/drop/slave=ball/zmin"});
   const auto& pair = in.params->sublist("Contact").sublist("drop");
   EXPECT_EQ(pair.get<std::string>("type"), "frictionless");
-  EXPECT_EQ(Teuchos::getIntegralValue<int>(pair, "type"), 1);
+  EXPECT_EQ(Teuchos::getIntegralValue<emc::contact::Kind>(pair, "type"),
+            emc::contact::Kind::frictionless);
   EXPECT_EQ(pair.get<double>("max penetration"), 0.002);
   EXPECT_EQ(pair.get<std::string>("slave"), "ball/zmin");
   expect_message(error(with_pair(kBallOnFloor), {"Contact/drop/type=slip"}),
@@ -603,7 +612,7 @@ TEST(InputFiles, BadInputsAreRefusedByTheInputModule) {
 }
 
 TEST(InputDocs, TablesListEveryParameter) {
-  const std::string md = emc::input::schema_markdown();
+  const std::string md = emc::input::schema_markdown(emc::app::input_schema());
   for (const char* row :
        {"| `dt` | double | `0.01` | > 0 and <= 1e30 |",
         "| `integrator` | string | `energy-momentum` |",
@@ -621,7 +630,7 @@ TEST(InputDocs, TablesListEveryParameter) {
 }
 
 TEST(InputSchema, ValidParametersHasEverySection) {
-  const auto all = emc::input::valid_parameters();
+  const auto all = emc::input::valid_parameters(emc::app::input_schema());
   for (const char* s : {"Time", "Bodies", "Loads", "Dirichlet", "Contact", "Solver", "Output"})
     EXPECT_TRUE(all->isSublist(s)) << s;
   EXPECT_TRUE(all->sublist("Contact").sublist("<pair>").isParameter("max penetration"));

@@ -221,10 +221,8 @@ TEST(Frictionless, ProjectionSatisfiesConditionsAandB) {
     double xs0[3], xm0[3][3], xs1[3], xm1[3][3], xsh[3], xmh[3][3];
     sys.positions(sys.u0, xs0, xm0);
     sys.positions(st.u, xs1, xm1);
-    for (int c = 0; c < 3; ++c) {
-      xsh[c] = 0.5 * (xs0[c] + xs1[c]);
-      for (int i = 0; i < 3; ++i) xmh[i][c] = 0.5 * (xm0[i][c] + xm1[i][c]);
-    }
+    k::midpoint(xs0, xs1, xsh);
+    k::midpoint(xm0, xm1, xmh);
     double t1[3], t2[3], n[3];
     for (int c = 0; c < 3; ++c) {
       t1[c] = xmh[1][c] - xmh[0][c];
@@ -272,8 +270,7 @@ TEST(Frictionless, ReducedResidualShapes) {
   double xs0[3], xm0[3][3], xs1[3], xm1[3][3], xmh[3][3];
   sys.positions(sys.u0, xs0, xm0);
   sys.positions(st.u, xs1, xm1);
-  for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 3; ++c) xmh[i][c] = 0.5 * (xm0[i][c] + xm1[i][c]);
+  k::midpoint(xm0, xm1, xmh);
   double tau[2][3];
   for (int c = 0; c < 3; ++c) {
     tau[0][c] = xmh[1][c] - xmh[0][c];
@@ -367,9 +364,9 @@ TEST(Frictionless, ClosingProjectionLandsOnTheFacetAtTheEndOfTheStep) {
     const double nn1 = std::sqrt(dot(n1, n1));
     EXPECT_NEAR(dot(d1, n1) / nn1, 0.0, 4e-15);
     // (b) at n+1/2, and the move along n_{n+1/2}
+    k::midpoint(xs0, xs1, xsh);
+    k::midpoint(xm0, xm1, xmh);
     for (int c = 0; c < 3; ++c) {
-      xsh[c] = 0.5 * (xs0[c] + xs1[c]);
-      for (int i = 0; i < 3; ++i) xmh[i][c] = 0.5 * (xm0[i][c] + xm1[i][c]);
       t1[c] = xmh[1][c] - xmh[0][c];
       t2[c] = xmh[2][c] - xmh[0][c];
     }

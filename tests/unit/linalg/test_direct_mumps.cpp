@@ -111,7 +111,7 @@ TEST(DirectMumps, SingularMatrixIsALinearSolveErrorWithInfog) {
 TEST(LinearSolverMumps, ReusesTheFactorsWhileGmresConvergesWithThem) {
   auto comm = Tpetra::getDefaultComm();
   const auto map = cyclic_map(comm);
-  auto linear = linalg::valid_parameters()->sublist("Linear");
+  auto linear = *linalg::valid_linear_parameters();
   linear.set("type", "mumps");
   linalg::LinearSolver solver(linear, comm);
   Vector b(map), x(map);

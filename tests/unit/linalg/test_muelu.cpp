@@ -50,7 +50,7 @@ Teuchos::ParameterList linear_parameters(const std::string& null_space,
   p.set("multigrid from equations", from);
   p.set("tolerance", 1e-10);
   p.set("multigrid near null space", null_space);
-  p.validateParametersAndSetDefaults(linalg::valid_parameters()->sublist("Linear"));
+  p.validateParametersAndSetDefaults(*linalg::valid_linear_parameters());
   return p;
 }
 

@@ -10,8 +10,8 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/mesh/generate.hpp"
+#include "emcontact/mesh/msh_element_types.hpp"
 #include "mesh_test_util.hpp"
-#include "src/mesh/msh_parser.hpp"
 
 namespace emc::mesh::test {
 namespace {

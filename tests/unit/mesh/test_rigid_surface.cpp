@@ -9,7 +9,6 @@
 #include "emcontact/error.hpp"
 #include "emcontact/mesh/generate.hpp"
 #include "mesh_test_util.hpp"
-#include "src/mesh/internal.hpp"
 
 namespace emc::mesh::test {
 namespace {
@@ -126,13 +125,13 @@ TEST(RigidPlane, BadParametersAreRefused) {
 TEST(RigidPlane, GridCellsAreCappedForAnyAspectRatio) {
   for (const auto& [l1, l2, h] : std::vector<std::array<double, 3>>{
            {1e6, 1e-3, 1e-3}, {2.0, 2.0, 1e-9}, {1.0, 1.0, 0.1}, {1e300, 1e300, 1e-300}}) {
-    const auto n = detail::grid_cells(l1, l2, h);
+    const auto n = grid_cells(l1, l2, h);
     EXPECT_GE(n[0], 1);
     EXPECT_GE(n[1], 1);
     EXPECT_LE(static_cast<double>(n[0]) * n[1], 40000.0) << l1 << " " << l2 << " " << h;
   }
-  EXPECT_EQ(detail::grid_cells(1.0, 1.0, 0.1), (std::array<int, 2>{10, 10}));
-  EXPECT_EQ(detail::grid_cells(2.0, 2.0, 1e-9), (std::array<int, 2>{200, 200}));
+  EXPECT_EQ(grid_cells(1.0, 1.0, 0.1), (std::array<int, 2>{10, 10}));
+  EXPECT_EQ(grid_cells(2.0, 2.0, 1e-9), (std::array<int, 2>{200, 200}));
 }
 
 // ---- rectangle -------------------------------------------------------------------------------

@@ -63,7 +63,8 @@ def check_xdmf(d, frames):
             fail("geometry type")
         names = {a.get("Name"): a.get("Center") for a in g.findall("Attribute")}
         if names != {"displacement": "Node", "velocity": "Node", "von_mises": "Cell",
-                     "contact_status": "Node", "normal_force": "Node", "body": "Cell"}:
+                     "contact_status": "Node", "normal_force": "Node", "slip": "Node",
+                     "body": "Cell"}:
             fail(f"attributes {names}")
         for item in g.iter("DataItem"):
             fname, dset = item.text.strip().split(":")

@@ -1,0 +1,246 @@
+// The whole input schema, assembled from the modules' parameter declarations, and the checks
+// across sections (bodies of the Dirichlet conditions and contact pairs, rigid surface bodies at
+// rest, the end time against dt).
+#include "emcontact/app/input_schema.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "emcontact/contact/parameters.hpp"
+#include "emcontact/fem/parameters.hpp"
+#include "emcontact/input/detail.hpp"
+#include "emcontact/linalg/parameters.hpp"
+#include "emcontact/mesh/generate.hpp"
+#include "emcontact/output/parameters.hpp"
+#include "emcontact/time/parameters.hpp"
+
+namespace emc::app {
+namespace {
+
+namespace detail = emc::input::detail;
+using Teuchos::ParameterList;
+
+/// The sublist `name` of `list`, documented `doc`, set to `schema`.
+void set_sublist(ParameterList& list, const std::string& name, const std::string& doc,
+                 const ParameterList& schema) {
+  auto& sub = list.sublist(name, false, doc);
+  sub = schema;
+  sub.setName(name);
+}
+
+/// Every entry of `from`, appended to `to` in order.
+void append_entries(ParameterList& to, const ParameterList& from) {
+  for (auto it = from.begin(); it != from.end(); ++it) to.setEntry(from.name(it), from.entry(it));
+}
+
+/// Template of one body: `Mesh` (mesh module), then `Material` and `Initial` (fem module).
+Teuchos::RCP<const ParameterList> body_template() {
+  auto body = Teuchos::rcp(new ParameterList("<body>"));
+  set_sublist(*body, "Mesh", "The body's mesh: a Gmsh file or a generated shape.",
+              *emc::mesh::valid_mesh_parameters());
+  append_entries(*body, *emc::fem::valid_body_parameters());
+  return body;
+}
+
+/// `Time`: the time module's parameters, then the fem module's (`integrator`).
+Teuchos::RCP<const ParameterList> time_schema() {
+  auto time = Teuchos::rcp(new ParameterList(*emc::time::valid_parameters()));
+  append_entries(*time, *emc::fem::valid_time_parameters());
+  return time;
+}
+
+/// `Solver`: `Newton` (time module), `Linear` (linalg module), then `Assembly` (fem module).
+Teuchos::RCP<const ParameterList> solver_schema() {
+  auto solver = Teuchos::rcp(new ParameterList("Solver"));
+  set_sublist(*solver, "Newton", "Newton iteration of each time step.",
+              *emc::time::valid_newton_parameters());
+  set_sublist(*solver, "Linear", "Linear solver of each Newton iteration.",
+              *emc::linalg::valid_linear_parameters());
+  set_sublist(*solver, "Assembly", "Element assembly of each Newton iteration.",
+              *emc::fem::valid_assembly_parameters());
+  return solver;
+}
+
+std::vector<input::Section> sections() {
+  return {
+      {"Time", "Time stepping.", time_schema(), ""},
+      {"Bodies",
+       "One sublist per body; its name (`<body>` below) is free. At least one body is required. "
+       "A body whose `Mesh` has no tetrahedra (`type` `plane` or `rectangle`, or a `file` with "
+       "triangles only) is a rigid surface: it can only be the master of a contact pair, it "
+       "needs no `Material`, and it does not move (its motion is fixed for now: a non-zero "
+       "`Initial` velocity or angular velocity is refused).",
+       body_template(), "<body>"},
+      {"Loads", "External loads.", emc::fem::valid_load_parameters(), ""},
+      {"Dirichlet",
+       "Optional: one sublist per fixed surface; its name (`<condition>` below) is free. The "
+       "displacement of the surface's nodes is fixed to zero.",
+       emc::fem::valid_dirichlet_parameters(), "<condition>"},
+      {"Contact",
+       "Optional: one sublist per contact pair; its name (`<pair>` below) is free. The nodes of "
+       "the slave surface (of a deformable body) may not penetrate the facets of the master "
+       "surface (of another body, deformable or rigid); see \"Choosing slave and master\" "
+       "above.",
+       emc::contact::valid_pair_parameters(), "<pair>"},
+      {"Solver", "Newton and linear solvers, element assembly.", solver_schema(), ""},
+      {"Output", "What is written and where.", emc::output::valid_parameters(), ""},
+  };
+}
+
+void check_bodies(const ParameterList& params, const std::string& file) {
+  if (params.sublist("Bodies").numParams() == 0)
+    detail::fail(file, "Bodies", {"no body given", "one sublist per body (at least one)"});
+}
+
+/// A run of at most this many nominal steps: a dt below end / kMaxSteps cannot be meant (and
+/// from about end * 1e-16 on, t + dt == t: time would not advance).
+constexpr double kMaxSteps = 1e9;
+
+void check_end_time(const ParameterList& params, const std::string& file) {
+  const auto& time = params.sublist("Time");
+  const double dt = time.get<double>("dt"), end = time.get<double>("end");
+  for (const char* name : {"dt", "end"})
+    if (!std::isfinite(time.get<double>(name)))
+      detail::fail(file, std::string("Time/") + name, {"is not finite", "a finite double > 0"});
+  if (end / dt > kMaxSteps)
+    detail::fail(file, "Time/dt",
+                 {"dt = " + detail::format_double(dt) + " would take " +
+                      detail::format_double(std::ceil(end / dt)) +
+                      " steps to Time/end = " + detail::format_double(end),
+                  "a dt >= end / 1e9 (at most 1e9 steps)"});
+  if (end < dt)
+    detail::fail(file, "Time/end",
+                 {"end = " + detail::format_double(end) +
+                      " is smaller than dt = " + detail::format_double(dt),
+                  "a double >= dt"});
+}
+
+/// Calls f(path, sublist) for each user-named sublist of the named section `section` (path
+/// "<section>/<name>").
+template <class F>
+void for_each_named(const ParameterList& params, const std::string& section, F f) {
+  const auto& list = params.sublist(section);
+  for (auto it = list.begin(); it != list.end(); ++it)
+    f(section + "/" + list.name(it), list.sublist(list.name(it)));
+}
+
+/// Each Dirichlet condition names an existing body and a (non-empty) surface.
+void check_dirichlet(const ParameterList& params, const std::string& file) {
+  const auto& bodies = params.sublist("Bodies");
+  for_each_named(params, "Dirichlet", [&](const std::string& path, const ParameterList& c) {
+    const auto& body = c.get<std::string>("body");
+    if (!bodies.isSublist(body))
+      detail::fail(file, path + "/body",
+                   {body.empty() ? "missing (required)" : "\"" + body + "\" is not a body",
+                    "the name of a body: " + detail::entry_names(bodies)});
+    if (c.get<std::string>("surface").empty())
+      detail::fail(file, path + "/surface",
+                   {"missing (required)", "a named surface of the mesh of body \"" + body + "\""});
+  });
+}
+
+/// The `Mesh/type` of a (validated) body.
+const std::string& mesh_type(const ParameterList& bodies, const std::string& body) {
+  return bodies.sublist(body).sublist("Mesh").get<std::string>("type");
+}
+
+/// The bodies (of `bodies`) for which `keep(name)` holds, comma separated, or `none`.
+template <class F>
+std::string body_names(const ParameterList& bodies, const std::string& none, F keep) {
+  std::string names;
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    if (keep(bodies.name(it))) names += (names.empty() ? "" : ", ") + bodies.name(it);
+  }
+  return names.empty() ? none : names;
+}
+
+/// A rigid surface body (Mesh type `plane`, `rectangle`) does not move: its `Initial`
+/// velocity and angular velocity must be zero. (A `file` without tets is only known to be
+/// rigid once read: the mesh side checks it.)
+void check_rigid_bodies(const ParameterList& params, const std::string& file) {
+  const auto& bodies = params.sublist("Bodies");
+  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
+    const std::string& body = bodies.name(it);
+    const std::string& type = mesh_type(bodies, body);
+    if (!emc::mesh::is_rigid_surface_type(type)) continue;
+    const auto& initial = bodies.sublist(body).sublist("Initial");
+    for (const char* name : {"velocity", "angular velocity"}) {
+      const auto& v = initial.get<Teuchos::Array<double>>(name);
+      if (std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0; })) continue;
+      detail::fail(file, "Bodies/" + body + "/Initial/" + name,
+                   {"value " + detail::format_value(Teuchos::any(v)) +
+                        " on a rigid surface body (Mesh type \"" + type +
+                        "\"): the motion of rigid surfaces is fixed for now, they do not move",
+                    "{0, 0, 0} (or leave it out)"});
+    }
+  }
+}
+
+/// Checks `Contact/<pair>/<role>` ("body" or "body/surface" naming an existing body); returns
+/// the body name.
+std::string contact_body(const ParameterList& bodies, const ParameterList& pair,
+                         const std::string& role, const std::string& path,
+                         const std::string& file) {
+  const std::string& ref = pair.get<std::string>(role);
+  const auto slash = ref.find('/');
+  std::string body = ref.substr(0, slash);
+  const std::string allowed =
+      "a body name or body/surface (a named surface of that body); bodies: " +
+      detail::entry_names(bodies);
+  if (ref.empty()) detail::fail(file, path, {"missing (required)", allowed});
+  if (!bodies.isSublist(body))
+    detail::fail(file, path,
+                 {"\"" + body + "\"" + (slash == std::string::npos ? "" : " (in \"" + ref + "\")") +
+                      " is not a body",
+                  allowed});
+  if (slash + 1 == ref.size())
+    detail::fail(file, path, {"no surface name after \"" + body + "/\"", allowed});
+  return body;
+}
+
+/// Each contact pair names existing bodies, a deformable slave and a master on another body.
+/// (That a `/surface` exists is checked once the meshes are built.)
+void check_contact(const ParameterList& params, const std::string& file) {
+  const auto& bodies = params.sublist("Bodies");
+  for_each_named(params, "Contact", [&](const std::string& path, const ParameterList& pair) {
+    const std::string slave = contact_body(bodies, pair, "slave", path + "/slave", file);
+    const std::string master = contact_body(bodies, pair, "master", path + "/master", file);
+    const std::string& type = mesh_type(bodies, slave);
+    if (emc::mesh::is_rigid_surface_type(type))
+      detail::fail(file, path + "/slave",
+                   {"body \"" + slave + "\" is a rigid surface (Mesh type \"" + type +
+                        "\"); the slave must be a deformable body (a rigid surface is always "
+                        "the master)",
+                    "a deformable body: " +
+                        body_names(bodies, "(none in the input)", [&](const std::string& b) {
+                          return !emc::mesh::is_rigid_surface_type(mesh_type(bodies, b));
+                        })});
+    if (master == slave)
+      detail::fail(file, path + "/master",
+                   {"\"" + master + "\" is also the slave's body; self-contact is not supported",
+                    "a body other than \"" + slave + "\": " +
+                        body_names(bodies, "(no other body in the input)",
+                                   [&](const std::string& b) { return b != slave; })});
+  });
+}
+
+/// The checks across sections, in this order.
+void check(const ParameterList& params, const std::string& file) {
+  check_bodies(params, file);
+  check_end_time(params, file);
+  check_dirichlet(params, file);
+  check_rigid_bodies(params, file);
+  check_contact(params, file);
+}
+
+}  // namespace
+
+input::Schema input_schema() {
+  return {sections(), check};
+}
+
+input::Input read_input(const std::string& file, const std::vector<std::string>& overrides) {
+  return input::read_input(file, overrides, input_schema());
+}
+
+}  // namespace emc::app
