@@ -21,7 +21,8 @@ line option `--set Section/Sub/name=value` changes a parameter (e.g. `--set Time
 `--set Bodies/block/Initial/velocity={1,0,0}`); the value is read with the parameter's type.
 Relative mesh file names are relative to the input file's directory. Examples in this
 directory: `tumbling_box.xml` (a free tumbling box) and `falling_box.xml` (the same box falling
-under gravity); with contact: `ball.xml`, `three_disks.xml` and `hollow_cylinders.xml`.
+under gravity); with contact: `ball.xml`, `three_disks.xml` and `hollow_cylinders.xml`; with
+Coulomb friction: `ball_friction.xml` (the ball of `ball.xml` bouncing and rolling, mu = 0.3).
 
 ## Choosing slave and master
 

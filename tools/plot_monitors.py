@@ -5,7 +5,10 @@ Usage: plot_monitors.py DIR/monitors.csv [--out PNG] [--title T]
 
 Columns are found by header name (extra columns are ignored); the PNG defaults to the CSV path
 with a .png suffix. Panels: kinetic/elastic/potential/total vs time; Lx/Ly/Lz vs time; and
-Jx/Jy/Jz vs time if those columns are present.
+Jx/Jy/Jz vs time if those columns are present. With friction (a `dissipated` column that is not
+all zero, docs/THEORY.md §11.2) the energy panel also shows `dissipated` (D, the energy
+dissipated by friction since t = 0) and `total + dissipated` (E + D, the conserved quantity),
+and a second panel shows them on D's scale: D, E0 - E (the energy lost) and E + D - E0.
 """
 import argparse
 import os
@@ -36,13 +39,22 @@ def read_csv(path):
     return {name: data[:, i] for i, name in enumerate(header)}
 
 
+STYLES = {
+    "total": {"color": "k", "linewidth": 2},
+    "dissipated": {"color": "tab:purple", "linestyle": "--"},
+    "total + dissipated": {"color": "tab:gray", "linewidth": 2, "linestyle": ":"},
+    "E0 - total": {"color": "k", "linewidth": 2},
+    "total + dissipated - E0": {"color": "tab:gray", "linewidth": 2, "linestyle": ":"},
+}
+FRICTION = ("E0 - total", "dissipated", "total + dissipated - E0")
+
+
 def plot_group(ax, cols, names, ylabel):
     """Draws every column of `names` present in `cols` against time on `ax`."""
     t = cols["time"]
     for name in names:
         if name in cols:
-            style = {"color": "k", "linewidth": 2} if name == "total" else {}
-            ax.plot(t, cols[name], label=name, **style)
+            ax.plot(t, cols[name], label=name, **STYLES.get(name, {}))
     ax.set_ylabel(ylabel)
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize="small")
@@ -59,7 +71,17 @@ def main():
     missing = [c for c in ("time",) + ENERGIES + L_COLUMNS if c not in cols]
     if missing:
         sys.exit(f"{args.csv}: missing columns {', '.join(missing)}")
-    groups = [(ENERGIES, "energy"), (L_COLUMNS, "L")]
+    energies = ENERGIES
+    if "dissipated" in cols and np.any(cols["dissipated"] != 0):
+        cols["total + dissipated"] = cols["total"] + cols["dissipated"]
+        energies = ENERGIES + ("dissipated", "total + dissipated")
+        e0 = cols["total"][0] if cols["total"].size else 0.0
+        cols["E0 - total"] = e0 - cols["total"]
+        cols["total + dissipated - E0"] = cols["total + dissipated"] - e0
+    groups = [(energies, "energy")]
+    if energies != ENERGIES:
+        groups.append((FRICTION, "friction"))
+    groups.append((L_COLUMNS, "L"))
     if any(c in cols for c in J_COLUMNS):
         groups.append((J_COLUMNS, "J"))
 

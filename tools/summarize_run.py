@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """Summarises an emcontact monitors.csv: steps, Newton iterations per step, the largest
-relative drifts of E, L and J, and the contact periods (impacts).
+relative drifts of E, L and J, and the contact periods (impacts). With friction (a
+`dissipated` column D, docs/THEORY.md §11.2) also the largest |E + D - E0| / |E0| (the
+conserved quantity) and the final D.
 
     /usr/bin/python3 tools/summarize_run.py DIR/monitors.csv [--json] [--markdown NAME]
 """
@@ -21,6 +23,9 @@ def summarize(rows):
     s['newton_per_step'] = sum(r['newton_iterations'] for r in rows[1:]) / max(1, len(rows) - 1)
     s['max_newton'] = max(int(r['newton_iterations']) for r in rows[1:]) if len(rows) > 1 else 0
     s['E_drift'] = max(abs(r['total'] - r0['total']) for r in rows) / escale
+    # E + D: D (energy dissipated by friction) is 0 without friction, or in older files
+    s['ED_drift'] = max(abs(r['total'] + r.get('dissipated', 0.0) - r0['total']) for r in rows) / escale
+    s['dissipated'] = rows[-1].get('dissipated', 0.0)
     for q in 'LJ':
         ref = norm(vec(r0, q))
         d = max(norm([a - b for a, b in zip(vec(r, q), vec(r0, q))]) for r in rows)
@@ -61,6 +66,8 @@ def main():
         s['steps'], s['end_time'], s['newton_per_step'], s['max_newton']))
     print('max |E-E0|/|E0| = %.2e; max |L-L0| = %.2e (relative %.2e); max |J-J0| = %.2e (relative %.2e)' % (
         s['E_drift'], s['L_drift_abs'], s['L_drift'], s['J_drift_abs'], s['J_drift']))
+    if s['dissipated'] != 0:
+        print('dissipated by friction D = %.6g; max |E+D-E0|/|E0| = %.2e' % (s['dissipated'], s['ED_drift']))
     print('contact periods: ' + ', '.join('%.3f-%.3f s' % p for p in s['contact_periods']))
     print('max active slave nodes %d; active gaps in [%.2e, %.2e] m; active-set re-solves %d' % (
         s['max_active'], s['gap_min'], s['gap_max'], s['resolves']))
