@@ -116,15 +116,11 @@ KOKKOS_INLINE_FUNCTION bool coulomb_slip(const double xs0[3], const double xs1[3
   c.fN = c.slip = c.work = 0;
   facet_shape(xi, c.N);
   double xmh[3][3], xsh[3];
-  for (int r = 0; r < 3; ++r) {
-    xsh[r] = 0.5 * (xs0[r] + xs1[r]);
-    for (int i = 0; i < 3; ++i) xmh[i][r] = 0.5 * (xm0[i][r] + xm1[i][r]);
-  }
-  const Facet f = facet(xmh);
-  const double G11 = f.t1[0] * f.t1[0] + f.t1[1] * f.t1[1] + f.t1[2] * f.t1[2];
-  const double G12 = f.t1[0] * f.t2[0] + f.t1[1] * f.t2[1] + f.t1[2] * f.t2[2];
-  const double G22 = f.t2[0] * f.t2[0] + f.t2[1] * f.t2[1] + f.t2[2] * f.t2[2];
-  const double detG = G11 * G22 - G12 * G12;
+  midpoint(xs0, xs1, xsh);
+  midpoint(xm0, xm1, xmh);
+  const FacetMetric m = facet_metric(xmh);  // §2.2: tau_k, n and the metric g_ab
+  const Facet& f = m.f;
+  const double G11 = m.g11, G12 = m.g12, G22 = m.g22, detG = m.det;
   if (!(f.area2 > 0) || !(detG > 0)) return false;
   const double Gi[2][2] = {{G22 / detG, -G12 / detG}, {-G12 / detG, G11 / detG}};
   const double* n = f.n;

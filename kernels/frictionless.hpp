@@ -102,11 +102,9 @@ KOKKOS_INLINE_FUNCTION bool frictionless_blocks(const double xs0[3], const doubl
   double xmh[3][3], xsh[3];
   midpoint(xs0, xs1, xsh);
   midpoint(xm0, xm1, xmh);
-  const Facet f = facet(xmh);
-  const double G11 = f.t1[0] * f.t1[0] + f.t1[1] * f.t1[1] + f.t1[2] * f.t1[2];
-  const double G12 = f.t1[0] * f.t2[0] + f.t1[1] * f.t2[1] + f.t1[2] * f.t2[2];
-  const double G22 = f.t2[0] * f.t2[0] + f.t2[1] * f.t2[1] + f.t2[2] * f.t2[2];
-  const double detG = G11 * G22 - G12 * G12;
+  const FacetMetric m = facet_metric(xmh);  // §2.2: tau_k, n and the metric g_ab
+  const Facet& f = m.f;
+  const double G11 = m.g11, G12 = m.g12, G22 = m.g22, detG = m.det;
   if (!(f.area2 > 0) || !(detG > 0)) return false;
   const double Gi[2][2] = {{G22 / detG, -G12 / detG}, {-G12 / detG, G11 / detG}};  // G^-1
   const double* n = f.n;
