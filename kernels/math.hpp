@@ -13,6 +13,9 @@ KOKKOS_INLINE_FUNCTION double sqrt(double x) {
 KOKKOS_INLINE_FUNCTION double fabs(double x) {
   return ::fabs(x);
 }
+KOKKOS_INLINE_FUNCTION float fabs(float x) {
+  return ::fabsf(x);
+}
 KOKKOS_INLINE_FUNCTION double fmin(double a, double b) {
   return a < b ? a : b;
 }
@@ -24,6 +27,15 @@ KOKKOS_INLINE_FUNCTION constexpr double infinity() {
 }
 KOKKOS_INLINE_FUNCTION constexpr double epsilon() {
   return std::numeric_limits<double>::epsilon();
+}
+
+/// The index of the lowest set bit of m != 0 (a count of trailing zeros).
+KOKKOS_INLINE_FUNCTION int lowest_set_bit(unsigned m) {
+#if defined(__CUDA_ARCH__) || defined(__HIP_DEVICE_COMPILE__)
+  return __ffs(static_cast<int>(m)) - 1;
+#else
+  return __builtin_ctz(m);
+#endif
 }
 
 /// c = a x b.

@@ -3,6 +3,7 @@
 // rest, the end time against dt).
 #include "emcontact/app/input_schema.hpp"
 
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
 
@@ -139,9 +140,15 @@ void check_dirichlet(const ParameterList& params, const std::string& file) {
   });
 }
 
-/// The `Mesh/type` of a (validated) body.
+/// The `Mesh/type` of a (validated) body, as written.
 const std::string& mesh_type(const ParameterList& bodies, const std::string& body) {
   return bodies.sublist(body).sublist("Mesh").get<std::string>("type");
+}
+
+/// True when a (validated) body is a rigid surface by its `Mesh/type` (its validator's value).
+bool rigid_surface(const ParameterList& bodies, const std::string& body) {
+  return emc::mesh::is_rigid_surface_type(
+      Teuchos::getIntegralValue<emc::mesh::MeshType>(bodies.sublist(body).sublist("Mesh"), "type"));
 }
 
 /// The bodies (of `bodies`) for which `keep(name)` holds, comma separated, or `none`.
@@ -161,8 +168,8 @@ void check_rigid_bodies(const ParameterList& params, const std::string& file) {
   const auto& bodies = params.sublist("Bodies");
   for (auto it = bodies.begin(); it != bodies.end(); ++it) {
     const std::string& body = bodies.name(it);
+    if (!rigid_surface(bodies, body)) continue;
     const std::string& type = mesh_type(bodies, body);
-    if (!emc::mesh::is_rigid_surface_type(type)) continue;
     const auto& initial = bodies.sublist(body).sublist("Initial");
     for (const char* name : {"velocity", "angular velocity"}) {
       const auto& v = initial.get<Teuchos::Array<double>>(name);
@@ -205,16 +212,15 @@ void check_contact(const ParameterList& params, const std::string& file) {
   for_each_named(params, "Contact", [&](const std::string& path, const ParameterList& pair) {
     const std::string slave = contact_body(bodies, pair, "slave", path + "/slave", file);
     const std::string master = contact_body(bodies, pair, "master", path + "/master", file);
-    const std::string& type = mesh_type(bodies, slave);
-    if (emc::mesh::is_rigid_surface_type(type))
-      detail::fail(file, path + "/slave",
-                   {"body \"" + slave + "\" is a rigid surface (Mesh type \"" + type +
-                        "\"); the slave must be a deformable body (a rigid surface is always "
-                        "the master)",
-                    "a deformable body: " +
-                        body_names(bodies, "(none in the input)", [&](const std::string& b) {
-                          return !emc::mesh::is_rigid_surface_type(mesh_type(bodies, b));
-                        })});
+    if (rigid_surface(bodies, slave))
+      detail::fail(
+          file, path + "/slave",
+          {"body \"" + slave + "\" is a rigid surface (Mesh type \"" + mesh_type(bodies, slave) +
+               "\"); the slave must be a deformable body (a rigid surface is always "
+               "the master)",
+           "a deformable body: " +
+               body_names(bodies, "(none in the input)",
+                          [&](const std::string& b) { return !rigid_surface(bodies, b); })});
     if (master == slave)
       detail::fail(file, path + "/master",
                    {"\"" + master + "\" is also the slave's body; self-contact is not supported",

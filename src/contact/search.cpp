@@ -122,7 +122,7 @@ void fill_reach(FacetGrid::Records rec, FacetGrid::Boxes box,
                 Kokkos::View<const Prism*, ExecSpace> prism, double margin,
                 FacetGrid::Boxes reach) {
   using G = FacetGrid;
-  using Kokkos::Experimental::fabs;
+  using kernels::fabs;
   Kokkos::parallel_for(
       "emcontact::contact::grid_reach", Policy(0, rec.extent(0)), KOKKOS_LAMBDA(const int f) {
         if (!(rec(f, G::DET) > 0)) {

@@ -56,8 +56,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_assembly_parameters() {
   pl->set(
       "scatter", std::string("auto"),
       "How the element loops add into the rows their elements share: coloured runs are "
-      "reproducible bit for bit with any number of threads (docs/THEORY.md §9) and measured "
-      "4-7% slower than atomic in Serial (perf/README.md \"OpenMP threads\"); atomic "
+      "reproducible bit for bit with any number of threads (docs/THEORY.md §9) and slower than "
+      "atomic in Serial (perf/README.md \"OpenMP threads\"); atomic "
       "runs with several threads differ in the last bits from run to run (with one thread "
       "they add in loop order, as reproducible).",
       string_choice("scatter", {"auto", "coloured", "atomic"},

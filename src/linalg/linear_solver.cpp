@@ -15,10 +15,31 @@ namespace emc::linalg {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
+namespace {
+
+/// The input's name of a preconditioner (Solver/Linear/preconditioner).
+const char* preconditioner_name(Preconditioner p) {
+  switch (p) {
+    case Preconditioner::automatic:
+      return "auto";
+    case Preconditioner::ilu:
+      return "ilu";
+    case Preconditioner::schwarz:
+      return "schwarz";
+    case Preconditioner::muelu:
+      return "muelu";
+    case Preconditioner::none:
+      break;
+  }
+  return "none";
+}
+
+}  // namespace
+
 LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm> comm,
                            const std::string& file)
     : type_(Teuchos::getIntegralValue<SolverType>(linear, "type")),
-      prec_type_(linear.get<std::string>("preconditioner")),
+      prec_type_(Teuchos::getIntegralValue<Preconditioner>(linear, "preconditioner")),
       tol_(linear.get<double>("tolerance")),
       check_factor_(linear.get<double>("residual check factor")),
       max_iters_(linear.get<int>("max iterations")),
@@ -29,8 +50,8 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
       zero_eliminated_(linear.get<bool>("multigrid modes zero at eliminated dofs")),
       refresh_(Teuchos::getIntegralValue<MultigridReuse>(linear, "multigrid reuse") ==
                MultigridReuse::refresh),
-      refreshable_(prec_type_ == "muelu" && refresh_),
-      auto_(prec_type_ == "auto"),
+      refreshable_(prec_type_ == Preconditioner::muelu && refresh_),
+      auto_(prec_type_ == Preconditioner::automatic),
       auto_dofs_(linear.get<int>("multigrid from equations")) {
   if (linear.isSublist("Belos")) belos_ = linear.sublist("Belos");
   if (linear.isSublist("Ifpack2")) ifpack2_ = linear.sublist("Ifpack2");
@@ -46,7 +67,7 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
 std::string LinearSolver::description() const {
   if (type_ == SolverType::klu2) return "Amesos2 KLU2";
   if (type_ == SolverType::mumps) return "MUMPS";
-  return "Belos " + krylov_name() + " + " + prec_type_;
+  return "Belos " + krylov_name() + " + " + preconditioner_name(prec_type_);
 }
 
 std::string LinearSolver::krylov_name() const {
@@ -62,8 +83,8 @@ void LinearSolver::matrix_changed() {
 
 void LinearSolver::choose_preconditioner(const RCP<Matrix>& A) {
   const bool large = static_cast<long long>(A->getGlobalNumRows()) >= auto_dofs_;
-  prec_type_ = large && muelu_available() ? "muelu" : "ilu";
-  refreshable_ = prec_type_ == "muelu" && refresh_;
+  prec_type_ = large && muelu_available() ? Preconditioner::muelu : Preconditioner::ilu;
+  refreshable_ = prec_type_ == Preconditioner::muelu && refresh_;
 }
 
 void LinearSolver::setup_preconditioner(const RCP<Matrix>& A, int level) {
@@ -75,9 +96,9 @@ void LinearSolver::setup_preconditioner(const RCP<Matrix>& A, int level) {
 
 void LinearSolver::build_preconditioner(const RCP<Matrix>& A, std::vector<std::string>* unused) {
   Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: preconditioner"));
-  if (prec_type_ == "none")
+  if (prec_type_ == Preconditioner::none)
     prec_ = Teuchos::null;
-  else if (prec_type_ == "muelu")
+  else if (prec_type_ == Preconditioner::muelu)
     prec_ = make_muelu_with_modes(A);
   else
     prec_ = make_ifpack2(prec_type_, A, ifpack2_, unused);

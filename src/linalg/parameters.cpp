@@ -22,25 +22,25 @@ void set_linear(Teuchos::ParameterList& pl) {
               "preconditioner while they work, see factorisation reuse rate)"},
              std::vector<SolverType>{SolverType::gmres, SolverType::cg, SolverType::klu2,
                                      SolverType::mumps});
-  pl.set(
-      "preconditioner", std::string("auto"),
-      "Preconditioner of the iterative solvers (ignored by klu2 and mumps); auto: the faster of "
-      "ilu and "
-      "muelu for the system's size (Solver/Linear/multigrid from equations).",
-      string_choice(
-          "preconditioner", {"auto", "ilu", "schwarz", "muelu", "none"},
-          {"muelu from Solver/Linear/multigrid from equations on (if built with MueLu), else ilu",
-           "Ifpack2 ILU", "Ifpack2 additive Schwarz",
-           "MueLu aggregation multigrid with rigid-body modes and Chebyshev "
-           "smoothers (fewer Krylov iterations; faster than ilu on large meshes, "
-           "see perf/README.md)",
-           "no preconditioner"}));
+  set_choice(
+      pl, "preconditioner", "auto",
+      "Preconditioner of the iterative solvers (ignored by klu2 and mumps); auto: ilu "
+      "or muelu by the system's size (Solver/Linear/multigrid from equations).",
+      {"auto", "ilu", "schwarz", "muelu", "none"},
+      {"muelu from Solver/Linear/multigrid from equations on (if built with MueLu), else ilu",
+       "Ifpack2 ILU", "Ifpack2 additive Schwarz",
+       "MueLu aggregation multigrid with rigid-body modes and Chebyshev smoothers (fewer "
+       "Krylov iterations on large meshes, see perf/README.md)",
+       "no preconditioner"},
+      std::vector<Preconditioner>{Preconditioner::automatic, Preconditioner::ilu,
+                                  Preconditioner::schwarz, Preconditioner::muelu,
+                                  Preconditioner::none});
   pl.set("tolerance", 1e-10,
          "Relative residual tolerance of the iterative solvers: every solve's with "
          "Solver/Newton/adaptive linear tolerance = false, else the tightest one (the solves "
          "that decide Newton's last iterate). Keep it below Newton's relative tolerance: a "
-         "linear solve less accurate than Newton's target costs an extra Newton iteration per "
-         "step (measured on inputs/ball.xml: 1.59 instead of 1 in free flight).",
+         "linear solve less accurate than Newton's target costs extra Newton iterations "
+         "(perf/README.md).",
          positive_double());
   pl.set("max iterations", 1000, "Iterations of the iterative solvers.", int_at_least(1));
   pl.set("reuse preconditioner", true,
@@ -54,8 +54,7 @@ void set_linear(Teuchos::ParameterList& pl) {
          double_range(1e-6, 0.9));
   pl.set("multigrid from equations", 150000,
          "With preconditioner = auto: muelu for Newton systems of at least this many equations "
-         "(3 per node), ilu below (measured: ilu faster on the 8k-tet ball, equal at 65k tets "
-         "(38k equations), muelu 1.5x faster in flight and 1.2x through an impact at 506k tets).",
+         "(3 per node), ilu below (the crossover measured in perf/README.md).",
          int_at_least(1));
   set_choice(
       pl, "multigrid near null space", "rigid body modes",

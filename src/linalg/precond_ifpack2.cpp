@@ -8,12 +8,12 @@ namespace emc::linalg {
 // `ilu`: RILUK(0); `schwarz`: restricted additive Schwarz with overlap 1 and RILUK(0) inside
 // (measured best of the Ifpack2 options on 2 ranks, see README "Toolchain"). The user's
 // `Ifpack2` sublist overrides these defaults unchanged.
-Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<const Matrix>& A,
+Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<const Matrix>& A,
                                     const Teuchos::ParameterList& user,
                                     std::vector<std::string>* unused) {
   Teuchos::ParameterList p;
   std::string name = "RILUK";
-  if (type == "schwarz") {
+  if (type == Preconditioner::schwarz) {
     name = "SCHWARZ";
     p.set("schwarz: overlap level", 1);
     p.set("schwarz: combine mode", "ZERO");  // restricted additive Schwarz

@@ -64,13 +64,14 @@ std::string one_line(const std::string& message) {
 
 /// Builds the preconditioner `type` on a test matrix and returns the matrix (prec_ is set).
 RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
-                                               const std::string& where, const std::string& type) {
+                                               const std::string& where, Preconditioner type) {
   prec_type_ = type;
   // MueLu: above its default coarse size (2000 rows), so that the smoothers of a fine level are
   // set up too (a smoother parameter of the wrong type was otherwise found only mid-run)
-  const auto A = test_matrix(comm, type == "muelu" ? 2400 : 6);
+  const bool muelu = type == Preconditioner::muelu;
+  const auto A = test_matrix(comm, muelu ? 2400 : 6);
   std::vector<std::string> unused;
-  const std::string prec = type == "muelu" ? "MueLu" : "Ifpack2";
+  const std::string prec = muelu ? "MueLu" : "Ifpack2";
   try {
     build_preconditioner(A, &unused);
   } catch (const std::exception& e) {
@@ -88,8 +89,8 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
   const std::string where = file.empty() ? "" : file + ": ";
   RCP<Matrix> A;
   if (auto_) {  // either may be chosen: both are tried
-    A = check_preconditioner(comm, where, "ilu");
-    if (muelu_available()) A = check_preconditioner(comm, where, "muelu");
+    A = check_preconditioner(comm, where, Preconditioner::ilu);
+    if (muelu_available()) A = check_preconditioner(comm, where, Preconditioner::muelu);
   } else {
     A = check_preconditioner(comm, where, prec_type_);
   }
@@ -116,7 +117,7 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
                      "; allowed: parameters Belos accepts (see its documentation)");
   }
   prec_ = Teuchos::null;  // the run's matrix gets its own
-  if (auto_) prec_type_ = "auto";
+  if (auto_) prec_type_ = Preconditioner::automatic;
 }
 
 }  // namespace emc::linalg

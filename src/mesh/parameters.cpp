@@ -96,8 +96,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
   return pl;
 }
 
-bool is_rigid_surface_type(const std::string& type) {
-  return type == "plane" || type == "rectangle";
+bool is_rigid_surface_type(MeshType type) {
+  return type == MeshType::plane || type == MeshType::rectangle;
 }
 
 }  // namespace emc::mesh

@@ -9,7 +9,6 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <impl/Kokkos_BitOps.hpp>  // Kokkos::Impl::bit_scan_forward, on host and device
 #include <vector>
 
 #include "emcontact/types.hpp"
@@ -213,7 +212,7 @@ class FacetGrid {
   /// false only when the float estimate of kernels::facet_outside, with a bound of its
   /// round-off (below 8 2^-24 of the sum of the magnitudes summed), is beyond tol.
   KOKKOS_INLINE_FUNCTION static bool maybe_inside(const Prism& p, const float yf[3], double tol) {
-    using Kokkos::Experimental::fabs;  // no branch (a conditional negation may compile to one)
+    using kernels::fabs;  // no branch (a conditional negation may compile to one)
     float xi = -p.c1, eta = -p.c2;
     float size = 1 + fabs(p.c1) + fabs(p.c2);
     for (int i = 0; i < 3; ++i) {  // yf >= 0 inside the grid
@@ -286,7 +285,7 @@ class FacetGrid {
     for (int k = lists.start(c); k < end; ++k) {
       const CellBlock& b = lists.blocks(k);
       for (unsigned m = lanes_holding(b, q); m; m &= m - 1) {
-        const int j = Kokkos::Impl::bit_scan_forward(m);
+        const int j = kernels::lowest_set_bit(m);
         const int f = b.facet[j];
         if (!surely_holds(b, j, q) && !in_box(f, y)) continue;
         if (!all && !maybe_inside(prism_(f), yf, 1e-9)) continue;

@@ -32,7 +32,7 @@ struct SolveStats {
 
 /// A preconditioner factory result (Ifpack2 or MueLu), as a Tpetra operator. `unused`, if
 /// given, receives the names of `user` that Ifpack2 does not know.
-Teuchos::RCP<Operator> make_ifpack2(const std::string& type, const Teuchos::RCP<const Matrix>& A,
+Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<const Matrix>& A,
                                     const Teuchos::ParameterList& user,
                                     std::vector<std::string>* unused = nullptr);
 /// Smoothed aggregation with 3 dofs per node; `nullspace` (rigid-body modes) and `coordinates`
@@ -89,7 +89,8 @@ class LinearSolver {
   bool assumes_symmetric() const { return type_ == SolverType::cg; }
   /// True when the preconditioner is built from node positions (multigrid's rigid-body modes).
   bool uses_positions() const {
-    return (prec_type_ == "muelu" || auto_) && null_space_ == NullSpace::rigid_body_modes;
+    return (prec_type_ == Preconditioner::muelu || auto_) &&
+           null_space_ == NullSpace::rigid_body_modes;
   }
   /// The configuration of the next solves: reference positions X (coordinate c of node n at dof
   /// 3 n + c, the matrix's row map) and displacements u; the next preconditioner built takes
@@ -99,7 +100,7 @@ class LinearSolver {
 
  private:
   SolverType type_;
-  std::string prec_type_;
+  Preconditioner prec_type_;  ///< the preconditioner built (auto: the one chosen by size)
   double tol_, check_factor_;
   int max_iters_;
   bool reuse_;
@@ -114,7 +115,7 @@ class LinearSolver {
   bool zero_eliminated_ = false;    ///< modes zero at eliminated (decoupled) dofs
   bool refresh_ = false;            ///< multigrid reuse = refresh (if muelu)
   bool refreshable_ = false;        ///< refresh_ and the preconditioner is muelu
-  bool auto_ = false;               ///< preconditioner = auto: chosen by size
+  bool auto_ = false;               ///< preconditioner = auto: chosen by size at each build
   long long auto_dofs_ = 0;         ///< auto: muelu from this many equations
   bool stale_ = false;              ///< prec_ is for an earlier structure: refresh
   Teuchos::RCP<Vector> positions_;  ///< node positions for the next multigrid build
@@ -136,7 +137,7 @@ class LinearSolver {
   void choose_preconditioner(const Teuchos::RCP<Matrix>& A);
   void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);
   Teuchos::RCP<Matrix> check_preconditioner(const Teuchos::RCP<const Comm>& comm,
-                                            const std::string& where, const std::string& type);
+                                            const std::string& where, Preconditioner type);
 };
 
 }  // namespace emc::linalg

@@ -16,7 +16,7 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters();
 
 /// True for the `type` values that always give a rigid surface (no tets): "plane", "rectangle".
 /// (A "file" without tetrahedra is one too, which is only known once it is read.)
-bool is_rigid_surface_type(const std::string& type);
+bool is_rigid_surface_type(MeshType type);
 
 /// Builds the mesh a validated `Mesh` sublist describes. `input_dir` resolves relative file
 /// names; `where` (e.g. "input.xml: Bodies/ball/Mesh") prefixes every error. Call on one rank

@@ -3,6 +3,7 @@
 #include <gmsh.h>
 #include <gtest/gtest.h>
 
+#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <fstream>
 #include <set>
 
@@ -215,11 +216,16 @@ TEST(RigidRectangle, BadCornersAndAxisAreRefused) {
   EXPECT_EQ(floor_error(p), "");
 }
 
+// Through the validator of Mesh/type, as the input schema reads it.
 TEST(RigidTypes, OnlyPlaneAndRectangleAreRigidTypes) {
-  EXPECT_TRUE(is_rigid_surface_type("plane"));
-  EXPECT_TRUE(is_rigid_surface_type("rectangle"));
-  for (const char* t : {"box", "cylinder", "hollow cylinder", "spherical shell", "file"})
-    EXPECT_FALSE(is_rigid_surface_type(t)) << t;
+  for (const char* t :
+       {"plane", "rectangle", "box", "cylinder", "hollow cylinder", "spherical shell", "file"}) {
+    Teuchos::ParameterList p;
+    p.set("type", std::string(t));
+    p.validateParametersAndSetDefaults(*valid_mesh_parameters());
+    const bool rigid = std::string(t) == "plane" || std::string(t) == "rectangle";
+    EXPECT_EQ(is_rigid_surface_type(Teuchos::getIntegralValue<MeshType>(p, "type")), rigid) << t;
+  }
 }
 
 // ---- triangles-only .msh files ---------------------------------------------------------------
