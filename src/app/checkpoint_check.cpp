@@ -78,6 +78,11 @@ void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std:
     refuse(path, "the checkpoint's active set has " + std::to_string(c.active.size()) +
                      " values and " + std::to_string(c.normal_force.size()) +
                      " normal forces (5 values and 1 force per active node)");
+  const std::size_t entries = c.normal_force.size();
+  if (!c.state.empty() && c.state.size() != entries * contact::kPackedState)
+    refuse(path, "the checkpoint's active set has " + std::to_string(entries) + " nodes and " +
+                     std::to_string(c.state.size()) + " state values (" +
+                     std::to_string(contact::kPackedState) + " per active node, or none)");
 }
 
 /// An integer in [0, n), or refused naming `what`.
@@ -86,6 +91,28 @@ int index_in(double v, std::size_t n, const std::string& what, const std::string
     refuse(path, "the checkpoint's active set has " + what + " " + std::to_string(v) +
                      " (allowed: 0 to " + std::to_string(long(n) - 1) + ")");
   return static_cast<int>(v);
+}
+
+/// docs/THEORY.md §11.7: the state of entry `slave` of `pair` (kPackedState values at `p`):
+/// slip and off are 0 or 1, only a Coulomb entry slides, only a sticking Coulomb entry is off
+/// (any other off entry was released at the end of its step), the direction is finite and at
+/// most a unit vector (a unit vector when it slides, to the round-off of its normalisation).
+void check_state(const double* p, const contact::Pair& pair, int slave, const std::string& path) {
+  auto need = [&](bool ok, const std::string& what) {
+    if (!ok)
+      refuse(path, "the checkpoint's active node " + std::to_string(slave) + " of pair " +
+                       pair.name + " has " + what);
+  };
+  const bool coulomb = pair.kind == contact::Kind::coulomb;
+  need(p[0] == 0 || p[0] == 1, "slip = " + std::to_string(p[0]) + " (allowed: 0 or 1)");
+  need(p[4] == 0 || p[4] == 1, "off = " + std::to_string(p[4]) + " (allowed: 0 or 1)");
+  need(p[0] == 0 || coulomb, "slip = 1 in a pair that is not coulomb");
+  need(p[4] == 0 || (coulomb && p[0] == 0), "off = 1 but is not a sticking coulomb entry");
+  const double norm = std::sqrt(p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
+  need(std::isfinite(norm) && norm <= 1 + 1e-12,
+       "a slip direction of length " + std::to_string(norm) + " (allowed: at most 1)");
+  need(p[0] == 0 || norm >= 1 - 1e-12,
+       "slip = 1 with a direction of length " + std::to_string(norm) + " (allowed: 1)");
 }
 
 void check_active(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
@@ -103,6 +130,8 @@ void check_active(const output::Checkpoint& c, const Simulation& sim, const std:
         !std::isfinite(c.normal_force[k / contact::kPackedActive]))
       refuse(path, "the checkpoint's active node " + std::to_string(slave) +
                        " has coordinates or a normal force that are not finite");
+    const std::size_t entry = k / contact::kPackedActive;
+    if (!c.state.empty()) check_state(&c.state[entry * contact::kPackedState], pair, slave, path);
   }
 }
 

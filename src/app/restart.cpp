@@ -53,6 +53,43 @@ void apply_new_dt(const output::Checkpoint& c, const time::Stepper& stepper, tim
                  path.c_str(), c.nominal_dt, stepper.nominal_dt(), c.step + 1);
 }
 
+/// Every rank's active entries into `c`: per entry its packed values, its normal force and its
+/// state (slip, direction, off; docs/THEORY.md §11.7: what the next step starts from).
+void gather_active(const Simulation& sim, output::Checkpoint& c) {
+  const auto& s = sim.state;
+  constexpr std::size_t n = contact::kPackedActive, stride = n + 1 + contact::kPackedState;
+  std::vector<double> mine;
+  for (std::size_t k = 0; k < s.active.size(); ++k) {
+    contact::pack(s.active[k], mine);
+    mine.push_back(k < s.normal_force.size() ? s.normal_force[k] : 0.0);
+    contact::pack_state(s.active[k], mine);
+  }
+  const auto all = allgather(*sim.disc->comm(), mine);
+  for (std::size_t k = 0; k + stride <= all.size(); k += stride) {
+    c.active.insert(c.active.end(), all.begin() + k, all.begin() + k + n);
+    c.normal_force.push_back(all[k + n]);
+    c.state.insert(c.state.end(), all.begin() + k + n + 1, all.begin() + k + stride);
+  }
+}
+
+/// My entries of the checkpoint's active set (broadcast to every rank), with their normal forces
+/// and states (all stick and none off if the checkpoint has none: written before §11.7).
+void scatter_active(const output::Checkpoint& c, Simulation& sim) {
+  auto& s = sim.state;
+  s.active.clear();
+  s.normal_force.clear();
+  const int rank = sim.disc->comm()->getRank();
+  constexpr std::size_t n = contact::kPackedActive;
+  for (std::size_t k = 0; k + n <= c.active.size(); k += n) {
+    contact::Active a = contact::unpack(&c.active[k]);
+    if (sim.disc->part().node_owner.at(a.slave) != rank) continue;
+    const std::size_t entry = k / n;
+    if (!c.state.empty()) contact::unpack_state(&c.state.at(entry * contact::kPackedState), a);
+    s.active.push_back(a);
+    s.normal_force.push_back(c.normal_force.at(entry));
+  }
+}
+
 }  // namespace
 
 void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path) {
@@ -65,18 +102,7 @@ void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::s
   c.V = dofs(*s.V);
   int has = s.last_increment.is_null() ? 0 : 1;
   if (has) c.last_increment = dofs(*s.last_increment);
-  // per entry its packed values, then its normal force
-  constexpr std::size_t stride = contact::kPackedActive + 1;
-  std::vector<double> mine;
-  for (std::size_t k = 0; k < s.active.size(); ++k) {
-    contact::pack(s.active[k], mine);
-    mine.push_back(k < s.normal_force.size() ? s.normal_force[k] : 0.0);
-  }
-  const auto all = allgather(*sim.disc->comm(), mine);
-  for (std::size_t k = 0; k + stride <= all.size(); k += stride) {
-    c.active.insert(c.active.end(), all.begin() + k, all.begin() + k + contact::kPackedActive);
-    c.normal_force.push_back(all[k + contact::kPackedActive]);
-  }
+  gather_active(sim, c);
   if (sim.disc->comm()->getRank() == 0) output::write_checkpoint(path, c);
   sim.disc->comm()->barrier();
 }
@@ -105,6 +131,7 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   c.set_scalars(scalars, path);
   broadcast_vector(comm, c.active);
   broadcast_vector(comm, c.normal_force);
+  broadcast_vector(comm, c.state);
   auto& s = sim.state;
   copy_scalars(c, s);
   apply_new_dt(c, *sim.stepper, s, path, comm.getRank() == 0);
@@ -115,16 +142,7 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
     s.last_increment = Teuchos::rcp(new Vector(s.u->getMap()));
     dofs.scatter(c.last_increment, *s.last_increment);
   }
-  s.active.clear();
-  s.normal_force.clear();
-  const int rank = comm.getRank();
-  for (std::size_t k = 0; k + contact::kPackedActive <= c.active.size();
-       k += contact::kPackedActive) {
-    const contact::Active a = contact::unpack(&c.active[k]);
-    if (sim.disc->part().node_owner.at(a.slave) != rank) continue;
-    s.active.push_back(a);
-    s.normal_force.push_back(c.normal_force.at(k / contact::kPackedActive));
-  }
+  scatter_active(c, sim);
   // docs/THEORY.md §7.2: which nodes keep their gap follows from u_n and the active set, as at
   // the end of the step that wrote the checkpoint
   if (sim.contact && sim.contact->closes_gaps()) {

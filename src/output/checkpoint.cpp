@@ -51,6 +51,12 @@ std::vector<double> read_vector(hid_t file, const char* name, const std::string&
   return v;
 }
 
+/// A dataset that older checkpoints lack: empty if the file has none.
+std::vector<double> read_optional_vector(hid_t file, const char* name, const std::string& path) {
+  if (H5Lexists(file, name, H5P_DEFAULT) <= 0) return {};
+  return read_vector(file, name, path);
+}
+
 /// The model fingerprint and the checksum: present (else an older checkpoint, refused) and
 /// matching the contents.
 void check_integrity(hid_t file, Checkpoint& c, const std::string& path) {
@@ -98,6 +104,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     write_vector(file, "last_increment", c.last_increment, path);
     write_vector(file, "active", c.active, path);
     write_vector(file, "normal_force", c.normal_force, path);
+    write_vector(file, "state", c.state, path);
     detail::write_string_attribute(file, "model", c.model, path);
     detail::write_u64_attribute(file, "checksum", detail::checksum(c), path);
   });
@@ -115,6 +122,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     c.last_increment = read_vector(file, "last_increment", path);
     c.active = read_vector(file, "active", path);
     c.normal_force = read_vector(file, "normal_force", path);
+    c.state = read_optional_vector(file, "state", path);  // absent before §11.7: all stick
     check_integrity(file, c, path);
   } catch (...) {
     H5Fclose(file);

@@ -28,6 +28,9 @@ std::uint64_t checksum(const Checkpoint& c) {
   std::uint64_t h = kFnvOffset;
   fnv(h, c.scalars());
   for (const auto* v : {&c.u, &c.V, &c.last_increment, &c.active, &c.normal_force}) fnv(h, *v);
+  // the entries' states only when there are some: a checkpoint written before them keeps its
+  // sum, and one whose states were removed does not match its own
+  if (!c.state.empty()) fnv(h, c.state);
   fnv(h, c.model.data(), c.model.size());
   return h;
 }

@@ -218,6 +218,61 @@ hostile_checkpoint_other_contact_master_refused() {
   expect_short_err 1
 }
 
+# docs/THEORY.md §11.7: the sliding block of tests/regression/slide.xml checkpointed at step 60
+# (t = 0.3, before it stops), its Coulomb entries sliding: ck/checkpoint.h5 with their states.
+emc_sliding_checkpoint() {
+  cp "$HERE/../regression/slide.xml" in.xml
+  "$EMC" in.xml --set Time/end=0.3 --set "Output/checkpoint every=60" --output ck >ck.log 2>&1
+  /usr/bin/python3 "$HERE/checkpoint_state.py" ck/checkpoint.h5 sliding
+}
+
+# A checkpoint of the sliding block written before the entries' states were stored
+# (pre_state_checkpoint_slide.h5, step 60, with its monitors.csv) still loads: its entries start
+# in stick (the return map puts the sliding ones back in slip) and the run goes on.
+hostile_checkpoint_without_entry_states_loads() {
+  cp "$HERE/../regression/slide.xml" in.xml
+  mkdir old
+  cp "$HERE/pre_state_checkpoint_slide.h5" old/checkpoint.h5
+  cp "$HERE/pre_state_checkpoint_slide.csv" old/monitors.csv
+  expect_exit_within 120 0 "$EMC" in.xml --set Time/end=0.35 --output old \
+    --restart old/checkpoint.h5 || return 1
+  [ "$(wc -l <old/monitors.csv)" -eq 72 ] || { echo "not 71 steps"; return 1; }
+  cmp -s <(head -62 old/monitors.csv) "$HERE/pre_state_checkpoint_slide.csv" ||
+    { echo "the rows up to the checkpoint changed"; return 1; }
+}
+
+# Entry states of a wrong size or with values a run cannot have written are refused, naming the
+# file and what is wrong; a state edited without its checksum is refused as corrupt.
+hostile_checkpoint_bad_entry_states_refused() {
+  emc_sliding_checkpoint || return 1
+  local edit want
+  for edit in drop-last slip-2 slip-no-direction dir-nan off-while-sliding flip-slip; do
+    case $edit in
+      drop-last) want="active set has [0-9]+ nodes and [0-9]+ state values \\(5 per" ;;
+      slip-2) want="slip = 2.* \\(allowed: 0 or 1\\)" ;;
+      slip-no-direction) want="slip = 1 with a direction of length 0" ;;
+      dir-nan) want="slip direction of length (nan|-nan)" ;;
+      off-while-sliding) want="off = 1 but is not a sticking coulomb entry" ;;
+      flip-slip) want="" ;;
+    esac
+    rm -rf f && cp -r ck f
+    /usr/bin/python3 "$HERE/checkpoint_state.py" f/checkpoint.h5 $edit || return 1
+    if [ -z "$want" ]; then  # a valid state (stick): accepted
+      expect_exit_within 120 0 "$EMC" in.xml --set Time/end=0.31 --output f \
+        --restart f/checkpoint.h5 || return 1
+      continue
+    fi
+    expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.31 --output f \
+      --restart f/checkpoint.h5 || return 1
+    expect_err "f/checkpoint.h5: .*$want" || return 1
+    expect_short_err 1 || return 1
+  done
+  rm -rf f && cp -r ck f
+  /usr/bin/python3 "$HERE/checkpoint_state.py" f/checkpoint.h5 flip-slip --keep-checksum
+  expect_exit_within 30 1 "$EMC" in.xml --set Time/end=0.31 --output f --restart f/checkpoint.h5
+  expect_err "f/checkpoint.h5: the checksum does not match"
+}
+
 # --- solver exceptions ---
 
 hostile_belos_num_blocks_zero_one_line() {

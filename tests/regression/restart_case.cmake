@@ -1,6 +1,7 @@
 # Checkpoint and restart: run A to the end with a checkpoint at step 60 (contact active there),
 # copy its output, restart B from the checkpoint and require B's monitors.csv to be identical to
-# A's, byte for byte (same rank count).
+# A's, byte for byte (same rank count). -DSLIDING=1: also require friction to have dissipated
+# energy over step 60 (a Coulomb case with entries sliding at the checkpoint).
 if(RANKS GREATER 1)
   set(cmd ${MPIEXEC} --allow-run-as-root --oversubscribe -np ${RANKS} ${EMC})
 else()
@@ -29,4 +30,15 @@ if(NOT same EQUAL 0)
 endif()
 file(STRINGS ${OUT}_A/monitors.csv rows)
 list(GET rows 61 row60)
+if(SLIDING)  # Coulomb (docs/THEORY.md §11.2): D grew over step 60, so entries slid at the checkpoint
+  list(GET rows 60 row59)
+  string(REPLACE "," ";" before "${row59}")
+  string(REPLACE "," ";" after "${row60}")
+  list(GET before -1 d59)
+  list(GET after -1 d60)
+  list(GET rows 0 header)
+  if(NOT header MATCHES ",dissipated$" OR NOT d59 LESS d60)
+    message(FATAL_ERROR "nothing slid over the checkpoint's step (dissipated ${d59} -> ${d60})")
+  endif()
+endif()
 message(STATUS "identical monitors; the checkpoint's row: ${row60}")

@@ -57,6 +57,23 @@ inline Active unpack(const double* p) {
   return a;
 }
 
+/// The doubles of an entry's state that a step starts from besides the kPackedActive values
+/// (slip 1 or stick 0, the direction of its last slip, off 1 or 0; docs/THEORY.md §11.4): what
+/// the checkpoint stores with them (output::Checkpoint::state, §11.7).
+constexpr std::size_t kPackedState = 5;
+
+/// Appends the kPackedState values of `a` to `out`.
+inline void pack_state(const Active& a, std::vector<double>& out) {
+  out.insert(out.end(), {a.slip ? 1.0 : 0.0, a.dir[0], a.dir[1], a.dir[2], a.off ? 1.0 : 0.0});
+}
+
+/// Sets the state of `a` from the kPackedState values at `p`.
+inline void unpack_state(const double* p, Active& a) {
+  a.slip = p[0] != 0;
+  for (int i = 0; i < 3; ++i) a.dir[i] = p[1 + i];
+  a.off = p[4] != 0;
+}
+
 /// Every rank's active entries by slave node (replicated), to compose chains (§3): a master
 /// node that is itself an active slave elsewhere contributes its own row of P.
 struct ActiveIndex {

@@ -1,7 +1,7 @@
 #pragma once
 // Checkpoint files: the complete state of a run at the end of a step (displacements,
-// velocities, the predictor's last increment, the active contact set with its projection data
-// and normal forces, step size and counters) in HDF5, written atomically by rank 0.
+// velocities, the predictor's last increment, the active contact set with its projection data,
+// normal forces and Coulomb states, step size and counters) in HDF5, written atomically by rank 0.
 #include <string>
 #include <vector>
 
@@ -18,6 +18,10 @@ struct Checkpoint {
   std::vector<double> last_increment;  ///< 3 per node, or empty (no step taken yet)
   std::vector<double> active;          ///< 5 per active slave: slave, pair, facet, xi, eta
   std::vector<double> normal_force;    ///< f_N per active slave
+  /// 5 per active slave: slip (1) or stick (0), the direction of its last slip, off (1: a
+  /// Coulomb entry that last slid off its facet, then stuck) (docs/THEORY.md §11.4, §11.7);
+  /// empty in checkpoints written before it (then every entry sticks, and none is off)
+  std::vector<double> state;
 
   /// The scalars as stored (step, t, dt, last_h, good_steps, last_iterations,
   /// newton_contraction, nominal_dt), and back (6 to 8 values, the counters whole numbers

@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "emcontact/contact/active_kernels.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/nodes.hpp"
+#include "kernels/coulomb.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/frictionless.hpp"
 
@@ -60,6 +62,7 @@ struct Entries {
       ref.edge = 1;
       ref.closes = e % 3 == 0;
       ref.frictionless = 1;
+      ref.mu = 0.1 * (e % 6);  // Coulomb: mu = 0 to 0.5 (not drawn: the other data stay)
       for (int i = 0; i < 3; ++i) gh(3 * e + i, 0) = u(rng);
       host.push_back(ref);
     }
@@ -80,6 +83,20 @@ struct Entries {
   }
   double gval(int dof) const {
     return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g)(dof, 0);
+  }
+  /// The entry's slave and facet at t_n and t_{n+1}, and its slave's residual, as kernels take
+  /// them.
+  struct Host {
+    double xm0[3][3], xm1[3][3], y0[3], y1[3], gs[3];
+  };
+  Host host_entry(int q) const {
+    Host h;
+    facet(x0, host[q], h.xm0);
+    facet(x1, host[q], h.xm1);
+    slave(x0, host[q], h.y0);
+    slave(x1, host[q], h.y1);
+    for (int i = 0; i < 3; ++i) h.gs[i] = gval(host[q].dof[i]);
+    return h;
   }
 };
 
@@ -419,4 +436,95 @@ TEST(ActiveKernels, FrictionlessSwitchEqualsAHostLoop) {
     for (int d = 0; d < 3; ++d) EXPECT_EQ(xsh(s, d), y1[d]);
   }
   EXPECT_GT(switched, ns / 2);
+}
+
+// docs/THEORY.md §11.1, §11.3: the friction force, dissipation and derivative terms of every
+// sliding entry (coulomb_slips, on the frictionless blocks of the same state) against
+// kernels::coulomb_slip in a host loop: bit for bit (each entry writes its own record).
+TEST(ActiveKernels, CoulombSlipsEqualAHostLoop) {
+  Entries e(kEntries);
+  Kokkos::View<k::FrictionlessBlocks*, emc::ExecSpace> blocks("blocks", e.n);
+  c::frictionless_blocks(e.refs, e.x0, e.x1, e.g, blocks);
+  Kokkos::View<k::CoulombSlip*, emc::ExecSpace> slips("slips", e.n);
+  c::coulomb_slips(e.refs, e.x0, e.x1, e.g, blocks, slips);
+  auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), slips);
+  int forced = 0;
+  for (int q = 0; q < e.n; ++q) {
+    const auto& a = e.host[q];
+    const auto h = e.host_entry(q);
+    k::FrictionlessBlocks b;
+    k::frictionless_blocks(h.y0, h.y1, h.xm0, h.xm1, a.xi, h.gs, b, a.closes != 0);
+    k::CoulombSlip expect;
+    ASSERT_TRUE(k::coulomb_slip(h.y0, h.y1, h.xm0, h.xm1, a.xi, h.gs, a.mu, b, expect));
+    EXPECT_EQ(0, std::memcmp(&expect, &sh(q), sizeof expect)) << "entry " << q;
+    forced += expect.work > 0;
+  }
+  // the records are not trivial: friction works on every entry with mu > 0 (5 in 6)
+  EXPECT_GT(forced, e.n / 2);
+}
+
+// docs/THEORY.md §11.4: the return map's state of every entry (f_N, trial force, s_T, |s_T|,
+// the CPP at t_n) against kernels::coulomb_state in a host loop: bit for bit.
+TEST(ActiveKernels, CoulombStatesEqualAHostLoop) {
+  Entries e(kEntries);
+  Kokkos::View<k::CoulombState*, emc::ExecSpace> states("states", e.n);
+  c::coulomb_states(e.refs, e.x0, e.x1, e.g, states);
+  auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), states);
+  int pressing = 0;
+  for (int q = 0; q < e.n; ++q) {
+    const auto h = e.host_entry(q);
+    k::CoulombState expect;
+    k::coulomb_state(h.y0, h.y1, h.xm0, h.xm1, e.host[q].xi, h.gs, expect);
+    EXPECT_EQ(0, std::memcmp(&expect, &sh(q), sizeof expect)) << "entry " << q;
+    EXPECT_GT(expect.slip, 0) << "entry " << q;  // random motions: every entry slips
+    pressing += expect.fN > 0;
+  }
+  EXPECT_GT(pressing, 0);  // f_N of both signs
+  EXPECT_LT(pressing, e.n);
+}
+
+// docs/THEORY.md §11.4, §4.1: where a returning entry sticks (the CPP of x_{s,n} on its facet at
+// t_n; its xi kept on a degenerate facet) against facet_cpp in a host loop: bit for bit. Every
+// 7th entry's facet at t_n is collapsed to a point (no CPP).
+TEST(ActiveKernels, StartPointsEqualAHostLoop) {
+  Entries e(kEntries);
+  auto a0 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), e.x0);
+  for (int q = 0; q < e.n; q += 7)
+    for (int j = 1; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) a0(e.host[q].m[j], i) = a0(e.host[q].m[0], i);
+  Kokkos::deep_copy(e.x0, a0);
+  Kokkos::View<double* [2], emc::ExecSpace> xi("xi", e.n);
+  c::start_points(e.refs, e.x0, xi);
+  auto xih = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xi);
+  int kept = 0;
+  for (int q = 0; q < e.n; ++q) {
+    const auto& a = e.host[q];
+    double xm[3][3], y[3], z[2], gap;
+    e.facet(e.x0, a, xm);
+    e.slave(e.x0, a, y);
+    const bool ok = k::facet_cpp(y, xm, z, gap);
+    EXPECT_EQ(ok, q % 7 != 0) << "entry " << q;
+    EXPECT_EQ(xih(q, 0), ok ? z[0] : a.xi[0]) << "entry " << q;
+    EXPECT_EQ(xih(q, 1), ok ? z[1] : a.xi[1]) << "entry " << q;
+    kept += !ok;
+  }
+  EXPECT_EQ(kept, (e.n + 6) / 7);
+}
+
+// docs/THEORY.md §1.6: the round-off of each slave's position at t_{n+1} (eps times the sum of
+// its coordinates' magnitudes: Newton's floor for the projected slaves' rows) against a host
+// loop: bit for bit.
+TEST(ActiveKernels, PositionRoundoffEqualsAHostLoop) {
+  Entries e(kEntries);
+  c::Values r("r", e.n);
+  c::position_roundoff(e.refs, e.x1, r);
+  auto rh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), r);
+  for (int q = 0; q < e.n; ++q) {
+    double y[3];
+    e.slave(e.x1, e.host[q], y);
+    const double expect = std::numeric_limits<double>::epsilon() *
+                          (std::fabs(y[0]) + std::fabs(y[1]) + std::fabs(y[2]));
+    EXPECT_EQ(rh(q), expect) << "entry " << q;
+    EXPECT_GT(rh(q), 0) << "entry " << q;
+  }
 }

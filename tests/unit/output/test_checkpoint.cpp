@@ -1,6 +1,6 @@
-// Checkpoint files: everything written is read back bit for bit; a checkpoint of the layout
-// before the inexact Newton (6 scalars) still loads, with no contraction estimate; any other
-// scalar count is refused naming the file.
+// Checkpoint files: everything written (the entries' states too) is read back bit for bit; a
+// checkpoint of the layout before the inexact Newton (6 scalars) still loads, with no
+// contraction estimate; any other scalar count is refused naming the file.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -29,6 +29,7 @@ TEST(Checkpoint, RoundTripIsBitwise) {
   c.last_increment = {7, 8, 9};
   c.active = {4, 0, 17, 1.0 / 7, 2.0 / 7};
   c.normal_force = {3.25};
+  c.state = {1, 0.6, -0.8, 1e-17, 0};  // docs/THEORY.md §11.7: slip, direction, off
   write_checkpoint(dir / "c.h5", c);
   const Checkpoint r = read_checkpoint(dir / "c.h5");
   EXPECT_EQ(r.scalars(), c.scalars());
@@ -37,6 +38,7 @@ TEST(Checkpoint, RoundTripIsBitwise) {
   EXPECT_EQ(r.last_increment, c.last_increment);
   EXPECT_EQ(r.active, c.active);
   EXPECT_EQ(r.normal_force, c.normal_force);
+  EXPECT_EQ(r.state, c.state);
 }
 
 TEST(Checkpoint, OlderSixScalarLayoutLoadsOthersAreRefused) {
