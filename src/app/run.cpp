@@ -192,6 +192,32 @@ double energy_scale(const output::MonitorRow& r0, const output::MonitorRow& r, d
   return std::max({scale, r.kinetic + r.elastic + std::fabs(r.potential), 1e-300});
 }
 
+/// docs/THEORY.md §6.7: with Time/settle steps > 0 the bodies come to rest under their loads
+/// before t = 0 (not at a restart: the checkpoint holds the state).
+void settle(Simulation& sim, const Teuchos::ParameterList& time, const std::string& file,
+            const Comm& comm) {
+  const time::SettleOptions o = time::settle_options(time);
+  if (o.max_steps == 0) return;
+  const time::SettleReport r = sim.stepper->settle(o);
+  char buf[400];
+  if (!r.converged) {
+    std::snprintf(buf, sizeof buf,
+                  "%s: Time/settle steps = %d: the bodies are not at rest after %d settling "
+                  "steps (a step of dt from rest gives a kinetic energy of %.3g times the "
+                  "elastic energy; Time/settle tolerance = %.3g); allowed: bodies that touch "
+                  "their supports at the start (a body without support has no static "
+                  "equilibrium), or more settle steps",
+                  file.c_str(), o.max_steps, r.steps, r.kinetic, o.tolerance);
+    throw RunError(buf);
+  }
+  if (comm.getRank() == 0)
+    std::printf(
+        "emcontact: settled to static equilibrium in %d steps (%d Newton iterations, "
+        "steps up to %.3g s)%s\n",
+        r.steps, r.newton_iterations, r.largest_h,
+        r.steady ? "; a steady free motion remains (a frictionless slide or twist)" : "");
+}
+
 }  // namespace
 
 std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
@@ -226,6 +252,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->stepper =
       std::make_unique<time::Stepper>(P.sublist("Time"), *sim->newton, *sim->elim,
                                       owned_fixed_dofs(disc), sim->contact.get(), sim->state);
+  if (opt.restart.empty()) settle(*sim, P.sublist("Time"), opt.input, *comm);
   return sim;
 }
 

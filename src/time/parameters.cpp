@@ -22,6 +22,22 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
   pl->set("grow after", 4,
           "Successful sub-steps after which dt doubles back toward the nominal dt.",
           int_at_least(1));
+  pl->set("settle steps", 0,
+          "Start at rest in static equilibrium under the loads (docs/THEORY.md §6.7): before "
+          "t = 0, at most this many steps from zero velocity, each followed by the mid-point "
+          "configuration, with the step size growing from dt while the active set holds; then "
+          "the bodies' Initial velocities are applied. For bodies that touch their supports at "
+          "the start (a stack, a block on the ground); a body without support has no static "
+          "equilibrium and the run stops. 0: start from the undeformed mesh (a load applied "
+          "suddenly at t = 0 makes the bodies ring).",
+          int_at_least(0));
+  pl->set(
+      "settle tolerance", 1e-12,
+      "Settling ends when a step of dt from rest gives a kinetic energy below this "
+      "fraction of the elastic energy with the same active set, or the same displacement "
+      "at every step of dt (a steady free motion: a frictionless slide or twist under a constant "
+      "tangential force).",
+      positive_double());
   return pl;
 }
 

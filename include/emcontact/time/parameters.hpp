@@ -6,8 +6,8 @@
 namespace emc::time {
 
 /// Valid parameters of `Time` the time module reads (defaults, validators, doc strings): `dt`,
-/// `end`, `max step cuts`, `grow after` (`integrator` is the fem module's:
-/// emc::fem::valid_time_parameters).
+/// `end`, `max step cuts`, `grow after`, `settle steps`, `settle tolerance` (`integrator` is the
+/// fem module's: emc::fem::valid_time_parameters).
 Teuchos::RCP<const Teuchos::ParameterList> valid_parameters();
 
 /// Valid parameters of `Solver/Newton` (read by newton_options): `relative tolerance`,

@@ -49,6 +49,26 @@ struct StepReport {
   contact::StepContactStats contact;
 };
 
+/// Settling to static equilibrium before t = 0 (docs/THEORY.md §6.7, `Time/settle ...`).
+struct SettleOptions {
+  int max_steps = 0;  ///< 0: no settling
+  /// done when a step of dt from rest gives a kinetic energy below tolerance times the
+  /// elastic energy, with the same active set
+  double tolerance = 1e-12;
+};
+struct SettleReport {
+  int steps = 0;              ///< settling steps taken
+  int newton_iterations = 0;  ///< over all of them
+  double change = 0;          ///< max |u_{k+1} - u_k| / max |u| of the last one
+  double kinetic = 0;         ///< the kinetic energy it gave, over the elastic energy
+  double largest_h = 0;       ///< the largest step size used
+  bool steady = false;        ///< settled up to a steady free motion (the same change per dt)
+  bool converged = false;     ///< at rest (kinetic <= tolerance) or steady
+};
+
+/// The settling options of the validated `Time` sublist.
+SettleOptions settle_options(const Teuchos::ParameterList& time);
+
 class Stepper {
  public:
   /// `time` is the validated `Time` sublist; `fixed` the owned Dirichlet dofs; `contact` may
@@ -59,6 +79,11 @@ class Stepper {
   bool finished() const;
   /// Advances to the next accepted step. Throws RunError if dt cannot be cut any further.
   StepReport advance();
+  /// Brings the state at t = 0 to rest in static equilibrium under the loads (docs/THEORY.md
+  /// §6.7): steps from V = 0, each followed by u = (u_k + u_{k+1}) / 2 and V = 0, with a step
+  /// size that grows from dt while the active set holds. The input's initial velocity is put
+  /// back at the end; t, the step count and the dissipated energy stay 0.
+  SettleReport settle(const SettleOptions& o);
   double nominal_dt() const { return dt_; }
   double end() const { return end_; }
 

@@ -1,0 +1,107 @@
+// Settling to static equilibrium before t = 0 (docs/THEORY.md §6.7).
+#include <Teuchos_CommHelpers.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "emcontact/error.hpp"
+#include "emcontact/time/stepper.hpp"
+
+namespace emc::time {
+namespace {
+
+/// The set of active slave nodes (global ids) over every rank, for "did it change".
+std::vector<int> active_nodes(const State& s, const Comm& comm) {
+  std::vector<int> mine;
+  for (std::size_t k = 0; k < s.contact_nodes.size(); ++k)
+    if (s.contact_status[k] == 1) mine.push_back(s.contact_nodes[k]);
+  int n = static_cast<int>(mine.size()), total = 0;
+  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &n, &total);
+  std::vector<int> counts(comm.getSize()), all(total);
+  Teuchos::gatherAll(comm, 1, &n, comm.getSize(), counts.data());
+  std::vector<int> displ(comm.getSize(), 0);
+  for (int r = 1; r < comm.getSize(); ++r) displ[r] = displ[r - 1] + counts[r - 1];
+  Teuchos::gatherv(mine.data(), n, all.data(), counts.data(), displ.data(), 0, comm);
+  Teuchos::broadcast(comm, 0, total, all.data());
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+}  // namespace
+
+// §6.7: from (u_k, V = 0) a step of size h gives u_{k+1}; for a mode of frequency w the error
+// of the mid-point configuration (u_k + u_{k+1}) / 2 is that of u_k times 4 / (4 + (w h)^2),
+// and a configuration the step leaves in place is in static equilibrium (the algorithmic
+// internal force of a step that does not move is the internal force). h doubles after each
+// step that keeps the active set, up to 1e4 dt, and halves back toward dt when it changes (a
+// long step from V = 0 lets a free node fall g h^2 / 2, beyond the reach of activation).
+SettleOptions settle_options(const Teuchos::ParameterList& time) {
+  SettleOptions o;
+  o.max_steps = time.get<int>("settle steps");
+  o.tolerance = time.get<double>("settle tolerance");
+  return o;
+}
+
+SettleReport Stepper::settle(const SettleOptions& o) {
+  SettleReport r;
+  if (o.max_steps <= 0) return r;
+  const Comm& comm = *s_.u->getMap()->getComm();
+  const Vector V_initial(*s_.V, Teuchos::Copy);
+  Vector u1(s_.u->getMap()), uk(s_.u->getMap());
+  std::vector<int> held = active_nodes(s_, comm);
+  double h = dt_, last = 1e300, last_dt = 1e300;
+  for (; r.steps < o.max_steps; ++r.steps) {
+    s_.V->putScalar(0.0);
+    uk.assign(*s_.u);
+    StepReport rep;
+    if (!solve_step(h, u1, rep)) {
+      if (h > dt_) {  // too long a step: shorter
+        h = std::max(dt_, h / 4);
+        continue;
+      }
+      throw RunError("settling (Time/settle steps) step " + std::to_string(r.steps + 1) +
+                     " could not be solved: " + rep.last_failure);
+    }
+    r.newton_iterations += rep.newton_iterations;
+    r.largest_h = std::max(r.largest_h, h);
+    s_.u->update(0.5, u1, 0.5);  // the mid-point configuration
+    u1.update(-1.0, uk, 1.0);
+    const double scale = std::max(s_.u->normInf(), 1e-300);
+    r.change = u1.normInf() / scale;
+    u1.scale(2.0 / h);  // the velocity the step from rest gave
+    const auto m = newton_.disc().monitors(*s_.u, u1);
+    r.kinetic = m.kinetic / std::max(m.elastic, 1e-300);
+    auto now = active_nodes(s_, comm);
+    const bool same = now == held;
+    held = std::move(now);
+    if (same && h == dt_) {
+      // at rest; or settled up to a slow steady free motion (a frictionless slide or twist
+      // under a constant net tangential force or torque: the same change at every step of dt,
+      // whose kinetic energy is below 1e-6 of the elastic energy, an acceleration below about
+      // 1e-3 g for a body loaded by its weight; not a free fall, which has no elastic energy)
+      r.steady = std::fabs(r.change - last_dt) <= 1e-3 * r.change && r.kinetic <= 1e-6;
+      if (r.kinetic <= o.tolerance || r.steady) {
+        r.converged = true;
+        ++r.steps;
+        break;
+      }
+      last_dt = r.change;
+    }
+    // longer steps while the change shrinks; back to dt to check for rest (the change is at
+    // round-off), when the change grows (a free motion's grows as h^2) or the set changes
+    const bool longer = same && r.change < 2 * last && r.change > 1e-13;
+    last = same ? r.change : 1e300;
+    h = longer ? std::min(2 * h, 1e4 * dt_) : dt_;
+  }
+  s_.V->assign(V_initial);
+  s_.last_increment = Teuchos::null;
+  s_.last_h = 0;
+  s_.last_iterations = 0;
+  s_.newton_contraction = 0;
+  s_.dissipated = 0;
+  s_.dt = dt_;
+  s_.good_steps = 0;
+  return r;
+}
+
+}  // namespace emc::time
