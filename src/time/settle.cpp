@@ -29,12 +29,6 @@ std::vector<int> active_nodes(const State& s, const Comm& comm) {
 
 }  // namespace
 
-// §6.7: from (u_k, V = 0) a step of size h gives u_{k+1}; for a mode of frequency w the error
-// of the mid-point configuration (u_k + u_{k+1}) / 2 is that of u_k times 4 / (4 + (w h)^2),
-// and a configuration the step leaves in place is in static equilibrium (the algorithmic
-// internal force of a step that does not move is the internal force). h doubles after each
-// step that keeps the active set, up to 1e4 dt, and halves back toward dt when it changes (a
-// long step from V = 0 lets a free node fall g h^2 / 2, beyond the reach of activation).
 SettleOptions settle_options(const Teuchos::ParameterList& time) {
   SettleOptions o;
   o.max_steps = time.get<int>("settle steps");
@@ -42,6 +36,13 @@ SettleOptions settle_options(const Teuchos::ParameterList& time) {
   return o;
 }
 
+// §6.7: from (u_k, V = 0) a step of size h gives u_{k+1}; for a mode of frequency w the error
+// of the mid-point configuration (u_k + u_{k+1}) / 2 is that of u_k times 4 / (4 + (w h)^2),
+// and a configuration the step leaves in place is in static equilibrium (the algorithmic
+// internal force of a step that does not move is the internal force). h doubles after each
+// step that keeps the active set while the change shrinks, up to 1e4 dt, and goes back to dt
+// when the set changes (a long step from V = 0 lets a free node fall g h^2 / 2, beyond the
+// reach of activation) or the change grows; rest is checked at steps of dt.
 SettleReport Stepper::settle(const SettleOptions& o) {
   SettleReport r;
   if (o.max_steps <= 0) return r;
