@@ -203,11 +203,13 @@ void settle(Simulation& sim, const Teuchos::ParameterList& time, const std::stri
   if (!r.converged) {
     std::snprintf(buf, sizeof buf,
                   "%s: Time/settle steps = %d: the bodies are not at rest after %d settling "
-                  "steps (a step of dt from rest gives a kinetic energy of %.3g times the "
-                  "elastic energy; Time/settle tolerance = %.3g); allowed: bodies that touch "
-                  "their supports at the start (a body without support has no static "
-                  "equilibrium), or more settle steps",
-                  file.c_str(), o.max_steps, r.steps, r.kinetic, o.tolerance);
+                  "steps (%s; Time/settle tolerance = %.3g); allowed: bodies that touch their "
+                  "supports at the start (a body without support has no static equilibrium), "
+                  "or more settle steps",
+                  file.c_str(), o.max_steps, r.steps,
+                  r.moved_away ? "a body moved farther than the bodies' extent"
+                               : "a step of dt from rest still gives kinetic energy",
+                  o.tolerance);
     throw RunError(buf);
   }
   if (comm.getRank() == 0)

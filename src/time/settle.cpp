@@ -5,26 +5,34 @@
 #include <cstdio>
 
 #include "emcontact/error.hpp"
+#include "emcontact/parallel.hpp"
 #include "emcontact/time/stepper.hpp"
 
 namespace emc::time {
 namespace {
 
 /// The set of active slave nodes (global ids) over every rank, for "did it change".
-std::vector<int> active_nodes(const State& s, const Comm& comm) {
-  std::vector<int> mine;
+std::vector<double> active_nodes(const State& s, const Comm& comm) {
+  std::vector<double> mine;
   for (std::size_t k = 0; k < s.contact_nodes.size(); ++k)
     if (s.contact_status[k] == 1) mine.push_back(s.contact_nodes[k]);
-  int n = static_cast<int>(mine.size()), total = 0;
-  Teuchos::reduceAll(comm, Teuchos::REDUCE_SUM, 1, &n, &total);
-  std::vector<int> counts(comm.getSize()), all(total);
-  Teuchos::gatherAll(comm, 1, &n, comm.getSize(), counts.data());
-  std::vector<int> displ(comm.getSize(), 0);
-  for (int r = 1; r < comm.getSize(); ++r) displ[r] = displ[r - 1] + counts[r - 1];
-  Teuchos::gatherv(mine.data(), n, all.data(), counts.data(), displ.data(), 0, comm);
-  Teuchos::broadcast(comm, 0, total, all.data());
+  auto all = allgather(comm, mine);
   std::sort(all.begin(), all.end());
   return all;
+}
+
+/// The largest extent of the bodies along x, y or z (X: reference positions, dof 3 n + c).
+double model_size(const Vector& X) {
+  const auto x = X.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto& map = *X.getMap();
+  double mine[6] = {-1e300, -1e300, -1e300, -1e300, -1e300, -1e300}, most[6];
+  for (std::size_t i = 0; i < x.extent(0); ++i) {
+    const int c = static_cast<int>(map.getGlobalElement(static_cast<LO>(i)) % 3);
+    mine[c] = std::max(mine[c], x(i, 0));
+    mine[3 + c] = std::max(mine[3 + c], -x(i, 0));
+  }
+  Teuchos::reduceAll(*map.getComm(), Teuchos::REDUCE_MAX, 6, mine, most);
+  return std::max({most[0] + most[3], most[1] + most[4], most[2] + most[5]});
 }
 
 }  // namespace
@@ -49,8 +57,9 @@ SettleReport Stepper::settle(const SettleOptions& o) {
   const Comm& comm = *s_.u->getMap()->getComm();
   const Vector V_initial(*s_.V, Teuchos::Copy);
   Vector u1(s_.u->getMap()), uk(s_.u->getMap());
-  std::vector<int> held = active_nodes(s_, comm);
+  std::vector<double> held = active_nodes(s_, comm);
   double h = dt_, last = 1e300, last_dt = 1e300;
+  const double size = model_size(*newton_.disc().reference_positions());
   for (; r.steps < o.max_steps; ++r.steps) {
     s_.V->putScalar(0.0);
     uk.assign(*s_.u);
@@ -65,7 +74,12 @@ SettleReport Stepper::settle(const SettleOptions& o) {
     }
     r.newton_iterations += rep.newton_iterations;
     r.largest_h = std::max(r.largest_h, h);
-    s_.u->update(0.5, u1, 0.5);  // the mid-point configuration
+    s_.u->update(0.5, u1, 0.5);        // the mid-point configuration
+    if (!(s_.u->normInf() <= size)) {  // no static state near the start (a free fall)
+      ++r.steps;
+      r.moved_away = true;
+      break;
+    }
     u1.update(-1.0, uk, 1.0);
     const double scale = std::max(s_.u->normInf(), 1e-300);
     r.change = u1.normInf() / scale;

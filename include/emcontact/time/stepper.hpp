@@ -64,6 +64,7 @@ struct SettleReport {
   double largest_h = 0;       ///< the largest step size used
   bool steady = false;        ///< settled up to a steady free motion (the same change per dt)
   bool converged = false;     ///< at rest (kinetic <= tolerance) or steady
+  bool moved_away = false;    ///< stopped: a body moved farther than the bodies' extent
 };
 
 /// The settling options of the validated `Time` sublist.
