@@ -169,7 +169,7 @@ void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
       });
 }
 
-void coulomb_slips(Refs refs, Positions x0, Positions x1, OwnedValues g,
+void coulomb_slips(Refs refs, Positions x0, Positions x1, OwnedValues g, Values weight,
                    Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks,
                    Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips) {
   Kokkos::parallel_for(
@@ -178,7 +178,12 @@ void coulomb_slips(Refs refs, Positions x0, Positions x1, OwnedValues g,
         const Geometry e(x0, x1, a);
         double gs[3];
         for (int c = 0; c < 3; ++c) gs[c] = g(a.dof[c], 0);
-        kernels::coulomb_slip(e.y0, e.y1, e.xm0, e.xm1, a.xi, gs, a.mu, blocks(k), slips(k));
+        kernels::SlipLaw law;
+        law.mu = a.mu;
+        law.weight = weight(k);
+        law.held = 64 * kernels::epsilon() * a.edge;  // position round-off, as §11.4's
+        for (int c = 0; c < 3; ++c) law.hint[c] = a.dir[c];
+        kernels::coulomb_slip(e.y0, e.y1, e.xm0, e.xm1, a.xi, gs, law, blocks(k), slips(k));
       });
 }
 

@@ -66,6 +66,7 @@ Refs Contact::refs(const std::vector<Active>& active) const {
     e.closes = closes(a);
     e.frictionless = slides(pr, a);
     e.mu = pr.mu;
+    for (int i = 0; i < 3; ++i) e.dir[i] = a.dir[i];
   }
   Kokkos::deep_copy(r, h);
   return r;

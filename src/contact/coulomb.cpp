@@ -109,9 +109,10 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
       continue;
     }
     const double along = c.sT[0] * a.dir[0] + c.sT[1] * a.dir[1] + c.sT[2] * a.dir[2];
-    // the slip vanished (below a few ulps of the facet's size) or turned back: stick
-    if (mu > 0 &&
-        (c.slip <= 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge || along < 0)) {
+    // the slip vanished (below a few ulps of the facet's size), turned back, or goes along the
+    // friction force (its work < 0: the converged state of a node that sticks, §11.4): stick
+    if (mu > 0 && (c.slip <= 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge ||
+                   along < 0 || !(slip_->slip_work(a.slave) > 0))) {
       back.push_back(where[k]);
       ++changed;
       continue;
@@ -152,18 +153,13 @@ int Coulomb::after_failure(const LawState& s, std::vector<Active>& active) const
   return static_cast<int>(back.size());
 }
 
-// docs/THEORY.md §11.2: D_{n+1} - D_n = sum over the sliding entries of mu |f_N| |s_T|, the
-// quantities of the friction force at the solution.
-double Coulomb::dissipation(const LawState& s, const std::vector<Active>& active,
-                            const Vector& g) const {
-  std::vector<std::size_t> where;
-  const auto entries = mine(s.contact, active, where);
-  if (entries.empty()) return 0;
-  const auto st = states(s, entries, g);
+// docs/THEORY.md §11.2: D_{n+1} - D_n = the work -f_T . s of the friction forces of the
+// sliding entries at the solution (the last iterate), = mu |f_N| |s_T| (> 0: the return map)
+double Coulomb::dissipation(const LawState&, const std::vector<Active>& active,
+                            const Vector&) const {
   double d = 0;
-  for (std::size_t k = 0; k < entries.size(); ++k)
-    if (entries[k].slip)
-      d += s.contact.pairs()[entries[k].pair].mu * std::fabs(st[k].fN) * st[k].slip;
+  for (const auto& a : active)
+    if (a.slip) d += slip_->slip_work(a.slave);
   return d;
 }
 

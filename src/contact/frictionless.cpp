@@ -34,6 +34,7 @@ class Frictionless final : public Law {
   int after_failure(const LawState& s, std::vector<Active>& active) const override;
   bool stalls() const override { return reversed_now_; }
   bool slides() const override { return sliding_now_; }
+  double slip_work(int slave) const override;
 
  private:
   Kind own_;  ///< the pairs' type: frictionless, or Coulomb's sliding entries (§11)
@@ -42,6 +43,8 @@ class Frictionless final : public Law {
   mutable std::vector<int> reversed_;
   mutable bool reversed_now_ = false;  ///< at the last iterate
   mutable bool sliding_now_ = false;   ///< Coulomb entries at the last iterate
+  /// Coulomb: (slave, -f_T . s) of my sliding entries at the last iterate, sorted by slave
+  mutable std::vector<std::pair<int, double>> work_;
 };
 
 std::vector<Active> mine(const Contact& contact, Kind own, const std::vector<Active>& active,
@@ -126,6 +129,7 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
 void Frictionless::rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
                         const Matrix* A, LawRows& out) const {
   reversed_now_ = sliding_now_ = false;
+  work_.clear();
   const auto entries = mine(s.contact, own_, active);
   if (entries.empty() || !g || !A) return;
   sliding_now_ = own_ == Kind::coulomb;
@@ -135,10 +139,20 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
   contact::frictionless_blocks(refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly),
                                blocks);
   auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), blocks);
+  // eq. 59: beta, the mean of the slave's diagonal entries of A; Coulomb's slip weight c (§11.1)
+  Values beta("emc::frictionless_beta", n);
+  auto betah = Kokkos::create_mirror_view(beta);
+  for (int k = 0; k < n; ++k) {
+    betah(k) = 0;
+    for (int c = 0; c < 3; ++c)
+      betah(k) += diagonal_entry(*A, fem::dof_gid(entries[k].slave, c)) / 3;
+  }
+  Kokkos::deep_copy(beta, betah);
   Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips("emc::coulomb_slips",
                                                        own_ == Kind::coulomb ? n : 0);
   if (own_ == Kind::coulomb)
-    coulomb_slips(refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly), blocks, slips);
+    coulomb_slips(refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly), beta, blocks,
+                  slips);
   auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), slips);
   Values r("emc::position_roundoff", n);
   position_roundoff(refs, s.x1, r);
@@ -149,6 +163,7 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
     const Active& a = entries[k];
     const kernels::CoulombSlip* fr = own_ == Kind::coulomb ? &fh(k) : nullptr;
     scatter(s, a, bh(k), fr, out);
+    if (fr) work_.emplace_back(a.slave, fr->work);
     if (fr) {  // docs/THEORY.md §11.4: an iterate sliding against the entry's direction
       const double along = fr->dir[0] * a.dir[0] + fr->dir[1] * a.dir[1] + fr->dir[2] * a.dir[2];
       if (along < 0 && s.contact.pairs()[a.pair].mu > 0) {
@@ -157,11 +172,15 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
           reversed_.push_back(a.slave);
       }
     }
-    double beta = 0;
-    for (int c = 0; c < 3; ++c) beta += diagonal_entry(*A, fem::dof_gid(a.slave, c)) / 3;
-    out.beta.emplace_back(fem::dof_gid(a.slave, 2), beta);  // eq. 59
-    out.roundoff += beta * beta * rh(k) * rh(k);
+    out.beta.emplace_back(fem::dof_gid(a.slave, 2), betah(k));  // eq. 59
+    out.roundoff += betah(k) * betah(k) * rh(k) * rh(k);
   }
+  std::sort(work_.begin(), work_.end());
+}
+
+double Frictionless::slip_work(int slave) const {
+  const auto it = std::lower_bound(work_.begin(), work_.end(), std::make_pair(slave, -1e300));
+  return it != work_.end() && it->first == slave ? it->second : 0.0;
 }
 
 /// §5 step 2 for my entries beyond the hysteresis (leaving, by pair): facet, xi, xs1 and
@@ -240,13 +259,16 @@ void Frictionless::after_update(const LawState& s, std::vector<Active>& active, 
   }
 }
 
-// docs/THEORY.md §11.4: a solve that failed while a sliding entry's slip turned against its
-// direction had no sliding solution: those entries stick for the rest of the step.
-int Frictionless::after_failure(const LawState&, std::vector<Active>& active) const {
+// docs/THEORY.md §11.4: a solve that failed while sliding entries' slip turned against their
+// direction had no sliding solution for them: those entries (on any rank) stick for the rest of
+// the step and the others keep sliding; a solve that failed without such entries makes the
+// entries that did not slide at t_n stick.
+int Frictionless::after_failure(const LawState& s, std::vector<Active>& active) const {
   int changed = 0;
+  const bool any_reversed = s.contact.global_count(static_cast<int>(reversed_.size())) > 0;
   for (auto& a : active)
-    if (a.slip &&
-        (!a.slid || std::find(reversed_.begin(), reversed_.end(), a.slave) != reversed_.end())) {
+    if (a.slip && ((!any_reversed && !a.slid) ||
+                   std::find(reversed_.begin(), reversed_.end(), a.slave) != reversed_.end())) {
       a.slip = false;
       a.pinned = true;
       ++changed;

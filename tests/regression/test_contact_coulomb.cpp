@@ -260,19 +260,27 @@ TEST(Coulomb, LargeMuIsFullStick) {
 }
 
 // docs/THEORY.md §11.3: with the exact linearisation Newton stays quadratic in slip steps (all
-// active nodes sliding, no re-solve; direct solves): order estimates above 1.8. The block is
-// made soft (E = 1e5 Pa) so that the steps are nonlinear enough for an estimate above the
-// round-off floor (the stiff block converges 117, 0.78, 2.2e-4, 1e-11: one quadratic iterate).
+// active nodes sliding, no re-solve; direct solves): order estimates above 1.8 on iterates three
+// decades above the residual Newton ends at (its round-off floor). The block is soft (E = 1e5
+// Pa) and spins about z at 10 rad/s as it slides, so that every node's slip turns from step to
+// step (the turn terms of the direction matter) and the steps are nonlinear enough for an
+// estimate above the floor: the start iterate carries the force along the last slip (§11.3),
+// and without the spin the stiff block converges 117, 0.65, 2e-4, 9e-12 (one estimate, at the
+// floor).
 TEST(Coulomb, NewtonQuadraticInSlipSteps) {
   if (!one_rank()) GTEST_SKIP() << "asserted on 1 rank";
   emc::app::Options o;
   o.input = std::string(EMC_TEST_DIR) + "/slide.xml";
-  o.overrides = {"Solver/Newton/relative tolerance=1e-15", "Solver/Newton/max iterations=40",
-                 "Solver/Linear/type=klu2", "Time/end=0.1", "Bodies/block/Material/young=1e5"};
+  o.overrides = {"Solver/Newton/relative tolerance=1e-15",
+                 "Solver/Newton/max iterations=40",
+                 "Solver/Linear/type=klu2",
+                 "Time/end=0.1",
+                 "Bodies/block/Material/young=1e5",
+                 "Bodies/block/Initial/angular velocity={0, 0, 10}"};
   auto sim = emc::app::setup(o, Tpetra::getDefaultComm());
   double best = 0;
   int checked = 0;
-  while (!sim->stepper->finished() && checked < 4) {
+  while (!sim->stepper->finished() && checked < 2) {
     const auto rep = sim->stepper->advance();
     bool all_slip = !sim->state.active.empty();
     for (const auto& a : sim->state.active) all_slip &= a.slip;
@@ -282,11 +290,11 @@ TEST(Coulomb, NewtonQuadraticInSlipSteps) {
     for (double x : r) std::printf(" %.2e", x);
     std::printf("\n");
     for (std::size_t k = 1; k + 1 < r.size(); ++k)
-      if (r[k + 1] > 1e-11 * r[0] && r[k] < r[k - 1] && r[k] < 1e-2 * r[0])
+      if (r[k + 1] > 1e3 * r.back() && r[k] < r[k - 1] && r[k] < 1e-2 * r[0])
         best = std::max(best, std::log(r[k + 1] / r[k]) / std::log(r[k] / r[k - 1]));
     ++checked;
   }
   std::printf("best order estimate %.2f\n", best);
-  EXPECT_EQ(checked, 4);
+  EXPECT_EQ(checked, 2);
   EXPECT_GT(best, 1.8);
 }

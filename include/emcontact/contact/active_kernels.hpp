@@ -23,6 +23,7 @@ struct ActiveRef {
   int closes = 0;             ///< the gap is closed (docs/THEORY.md §7.2)
   int frictionless = 0;       ///< slides under §5's constraint (frictionless, Coulomb in slip)
   double mu = 0;              ///< Coulomb friction coefficient (docs/THEORY.md §11)
+  double dir[3] = {0, 0, 0};  ///< Coulomb: the direction of the entry's last slip (§11.4)
 };
 
 using Refs = Kokkos::View<ActiveRef*, ExecSpace>;
@@ -85,8 +86,9 @@ void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
                          Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks);
 
 /// docs/THEORY.md §11.3: the friction force and its derivative terms of every sliding Coulomb
-/// entry (blocks: its frictionless blocks at the same state).
-void coulomb_slips(Refs refs, Positions x0, Positions x1, OwnedValues g,
+/// entry (blocks: its frictionless blocks at the same state, weight: the slip's weight c of
+/// §11.1 per entry).
+void coulomb_slips(Refs refs, Positions x0, Positions x1, OwnedValues g, Values weight,
                    Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks,
                    Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips);
 /// docs/THEORY.md §11.4: f_N, the trial tangential force, the slip and xi at t_n per entry.

@@ -72,6 +72,9 @@ class Law {
   virtual bool slides() const { return false; }
   /// After a failed solve: entries whose state is to blame change it; returns how many (local).
   virtual int after_failure(const LawState&, std::vector<Active>&) const { return 0; }
+  /// docs/THEORY.md §11.2: the work -f_T . s of the friction force on my sliding entry of
+  /// `slave` at the last iterate (0 if it has none).
+  virtual double slip_work(int /*slave*/) const { return 0; }
   /// The energy the law's entries dissipated over the step at the solution (local sum).
   virtual double dissipation(const LawState&, const std::vector<Active>&, const Vector&) const {
     return 0;

@@ -63,6 +63,7 @@ struct Entries {
       ref.closes = e % 3 == 0;
       ref.frictionless = 1;
       ref.mu = 0.1 * (e % 6);  // Coulomb: mu = 0 to 0.5 (not drawn: the other data stay)
+      if (e % 2) ref.dir[0] = 0.6, ref.dir[1] = -0.8;  // a last slip's direction (not drawn)
       for (int i = 0; i < 3; ++i) gh(3 * e + i, 0) = u(rng);
       host.push_back(ref);
     }
@@ -446,7 +447,11 @@ TEST(ActiveKernels, CoulombSlipsEqualAHostLoop) {
   Kokkos::View<k::FrictionlessBlocks*, emc::ExecSpace> blocks("blocks", e.n);
   c::frictionless_blocks(e.refs, e.x0, e.x1, e.g, blocks);
   Kokkos::View<k::CoulombSlip*, emc::ExecSpace> slips("slips", e.n);
-  c::coulomb_slips(e.refs, e.x0, e.x1, e.g, blocks, slips);
+  c::Values weight("weight", e.n);  // a different slip weight per entry
+  auto wh = Kokkos::create_mirror_view(weight);
+  for (int q = 0; q < e.n; ++q) wh(q) = 0.5 + q;
+  Kokkos::deep_copy(weight, wh);
+  c::coulomb_slips(e.refs, e.x0, e.x1, e.g, weight, blocks, slips);
   auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), slips);
   int forced = 0;
   for (int q = 0; q < e.n; ++q) {
@@ -455,9 +460,14 @@ TEST(ActiveKernels, CoulombSlipsEqualAHostLoop) {
     k::FrictionlessBlocks b;
     k::frictionless_blocks(h.y0, h.y1, h.xm0, h.xm1, a.xi, h.gs, b, a.closes != 0);
     k::CoulombSlip expect;
-    ASSERT_TRUE(k::coulomb_slip(h.y0, h.y1, h.xm0, h.xm1, a.xi, h.gs, a.mu, b, expect));
+    k::SlipLaw law;
+    law.mu = a.mu;
+    law.weight = wh(q);
+    law.held = 64 * k::epsilon() * a.edge;
+    for (int c = 0; c < 3; ++c) law.hint[c] = a.dir[c];
+    ASSERT_TRUE(k::coulomb_slip(h.y0, h.y1, h.xm0, h.xm1, a.xi, h.gs, law, b, expect));
     EXPECT_EQ(0, std::memcmp(&expect, &sh(q), sizeof expect)) << "entry " << q;
-    forced += expect.work > 0;
+    forced += expect.fT[0] != 0 || expect.fT[1] != 0 || expect.fT[2] != 0;
   }
   // the records are not trivial: friction works on every entry with mu > 0 (5 in 6)
   EXPECT_GT(forced, e.n / 2);

@@ -2,9 +2,11 @@
 // Tpetra, on the dense 4-node system of test_frictionless (slave = node 0, masters = nodes 1..3,
 // synthetic residual g(u) = A0 (u - u_n) + b + a cubic term with its exact Jacobian). The
 // reduced residual along the update map of §5 is R(q) = P^T (g - f), f the friction pair
-// (f_T on the slave, -N_i f_T on the masters, f_T = -mu |g_s . n| s_T / |s_T|); the kernel's
+// (f_T on the slave, -N_i f_T on the masters, f_T = -mu |g_s . n| d, d the direction of
+// -t + c s_T, t = the tangential part of g_s, c = kWeight); the kernel's
 // matrix Pl^T A Pt + X + X_f must be its Jacobian (f_N's dependence on the displacements
-// included), and the force pair's work over the step is -mu |f_N| |s_T|.
+// included), and where the slip rows are solved the force pair's work over the step is
+// -mu |f_N| |s_T|.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -25,7 +27,8 @@ namespace {
 /// (non-symmetric, well conditioned), b = U(-0.5, 0.5). The current iterate: the masters rotate
 /// by 0.3 rad about their centroid, translate and deform (0.05) between t_n and t_{n+1}; the
 /// slave slides by about 0.15 and is projected (steps 2-3). deforming = false: xm1 == xm0.
-void make(unsigned seed, bool deforming, System& sys, State& st, bool close = false) {
+void make(unsigned seed, bool deforming, System& sys, State& st, bool close = false,
+          double slide_scale = 1.0) {
   sys.close = close;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
@@ -61,24 +64,30 @@ void make(unsigned seed, bool deforming, System& sys, State& st, bool close = fa
     }
   }
   const double slide[3] = {0.12, -0.08, 0.03};
-  for (int c = 0; c < 3; ++c) st.u[c] += slide[c];
+  for (int c = 0; c < 3; ++c) st.u[c] += slide_scale * slide[c];
   st.xi[0] = st.xi[1] = 0;
   EXPECT_LT(project(sys, st), 0.0) << "the slave's CPP should be inside the facet";
 }
+
+/// the slip's weight c of §11.1: A0's diagonal (about 4)
+constexpr double kWeight = 4.0;
 
 struct Friction {
   k::FrictionlessBlocks b;
   k::CoulombSlip c;
 };
 
-Friction friction(const System& sys, const State& st, double mu) {
+Friction friction(const System& sys, const State& st, double mu, double cw = kWeight) {
   double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
   sys.positions(sys.u0, xs0, xm0);
   sys.positions(st.u, xs1, xm1);
   const Vec g = sys.g(st.u);
   Friction f;
   EXPECT_TRUE(k::frictionless_blocks(xs0, xs1, xm0, xm1, st.xi, g.data(), f.b, sys.close));
-  EXPECT_TRUE(k::coulomb_slip(xs0, xs1, xm0, xm1, st.xi, g.data(), mu, f.b, f.c));
+  k::SlipLaw law;
+  law.mu = mu;
+  law.weight = cw;
+  EXPECT_TRUE(k::coulomb_slip(xs0, xs1, xm0, xm1, st.xi, g.data(), law, f.b, f.c));
   return f;
 }
 
@@ -174,38 +183,125 @@ TEST(Coulomb, ExactMatrixIsTheJacobianOfTheReducedResidual) {
     }
 }
 
-// docs/THEORY.md §11.2: the force pair's work over the step, f_T . (dx_s - N dx_m), is
-// -mu |f_N| |s_T| = -work to round-off, f_T is tangential (f_T . n = 0) with |f_T| = mu |f_N|,
-// and the pair sums to zero (L). mu = 0: no force, no terms.
+// docs/THEORY.md §11.3: where the slip vanishes (the slave slides by 1e-9 to 1e-13 of the
+// facet's size over the step, on a fixed master) the matrix is still the Jacobian: the force's
+// direction d = (-t + c s_T) / |-t + c s_T| is smooth there, where s_T / |s_T| turns by O(1)
+// over a change of q of the size of the slip (its derivative, mu |f_N| / |s_T|, is 1e8 to 1e12
+// times the system's). Tolerance as above.
+TEST(Coulomb, ExactMatrixWhereTheSlipVanishes) {
+  for (double scale : {1e-9, 1e-13})
+    for (unsigned seed : {1u, 2u, 3u}) {
+      System sys;
+      State st;
+      make(seed, false, sys, st, false, scale);
+      const double mu = 0.4;
+      const Mat JR = fd_jacobian(sys, st, mu, 1e-7);
+      const Friction f = friction(sys, st, mu);
+      const double e = rel_diff(reduced_matrix(sys, st, mu), JR, kRed, kRed);
+      std::printf("seed %u |s_T| %.2e |f_T| %.3f: |K - J_fd|/|J_fd| %.2e\n", seed, f.c.slip,
+                  std::sqrt(f.c.fT[0] * f.c.fT[0] + f.c.fT[1] * f.c.fT[1] + f.c.fT[2] * f.c.fT[2]),
+                  e);
+      EXPECT_LT(f.c.slip, 1e-7);
+      EXPECT_NEAR(std::sqrt(f.c.fT[0] * f.c.fT[0] + f.c.fT[1] * f.c.fT[1] + f.c.fT[2] * f.c.fT[2]),
+                  mu * std::fabs(f.c.fN), 1e-14);
+      EXPECT_LT(e, 1e-6);
+    }
+}
+
+// docs/THEORY.md §11.2: f_T is tangential (f_T . n = 0) with |f_T| = mu |f_N|, the pair sums to
+// zero (L), and its work over the step, f_T . (dx_s - N dx_m), is -work to round-off at any
+// iterate. Where the slip rows are solved (the contact's tangential force t equals f_T: here
+// g_s is replaced by f_N n - mu |f_N| e, e = s_T / |s_T|) the force opposes the slip, d = e, and
+// the work is the dissipation mu |f_N| |s_T| > 0. mu = 0: no force, no terms.
 TEST(Coulomb, WorkOfTheForcePairIsTheDissipation) {
   for (bool close : {false, true})
     for (unsigned seed : {4u, 5u}) {
       System sys;
       State st;
       make(seed, true, sys, st, close);
-      const Friction f = friction(sys, st, 0.3);
       double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
       sys.positions(sys.u0, xs0, xm0);
       sys.positions(st.u, xs1, xm1);
-      double w = 0, fn = 0, ft = 0, sum = 0;
+      const Friction f = friction(sys, st, 0.3);
+      auto work = [&](const k::CoulombSlip& c) {
+        double w = 0;
+        for (int r = 0; r < 3; ++r) {
+          double rel = xs1[r] - xs0[r];
+          for (int i = 0; i < 3; ++i) rel -= c.N[i] * (xm1[i][r] - xm0[i][r]);
+          w += c.fT[r] * rel;
+        }
+        return w;
+      };
+      double fn = 0, ft = 0, sum = 0;
       for (int c = 0; c < 3; ++c) {
-        double rel = xs1[c] - xs0[c];
-        for (int i = 0; i < 3; ++i) rel -= f.c.N[i] * (xm1[i][c] - xm0[i][c]);
-        w += f.c.fT[c] * rel;
         fn += f.c.fT[c] * f.b.n[c];
         ft += f.c.fT[c] * f.c.fT[c];
         sum += f.c.fT[c] * (1 - f.c.N[0] - f.c.N[1] - f.c.N[2]);
       }
-      std::printf("%s seed %u: work %.6e, dissipation %.6e, f_T . n %.1e\n",
-                  close ? "closing" : "keeping", seed, w, f.c.work, fn);
-      EXPECT_GT(f.c.work, 0);
-      EXPECT_NEAR(w, -f.c.work, 1e-14 * f.c.work);
+      const double w = work(f.c);
+      EXPECT_NEAR(w, -f.c.work, 1e-14 * std::sqrt(ft));
       EXPECT_NEAR(fn, 0, 1e-15 * std::sqrt(ft));
       EXPECT_NEAR(std::sqrt(ft), 0.3 * std::fabs(f.c.fN), 1e-15 * std::fabs(f.c.fN));
       EXPECT_NEAR(sum, 0, 1e-15 * std::sqrt(ft));
+      // the same state with the slip rows solved: t = f_T = -mu |f_N| e
+      Vec g = sys.g(st.u);
+      for (int c = 0; c < 3; ++c) g[c] = f.c.fN * f.b.n[c] - 0.3 * std::fabs(f.c.fN) * f.c.dir[c];
+      k::CoulombSlip solved;
+      k::SlipLaw law;
+      law.mu = 0.3;
+      law.weight = kWeight;
+      ASSERT_TRUE(k::coulomb_slip(xs0, xs1, xm0, xm1, st.xi, g.data(), law, f.b, solved));
+      const double ws = work(solved);
+      std::printf("%s seed %u: work %.6e (rows solved %.6e), mu |f_N| |s_T| %.6e\n",
+                  close ? "closing" : "keeping", seed, w, ws, 0.3 * std::fabs(f.c.fN) * f.c.slip);
+      EXPECT_GT(solved.work, 0);
+      EXPECT_NEAR(ws, -0.3 * std::fabs(f.c.fN) * f.c.slip, 1e-14 * solved.work);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(solved.fT[c], -0.3 * std::fabs(f.c.fN) * f.c.dir[c], 1e-15 * std::sqrt(ft));
       const Friction f0 = friction(sys, st, 0.0);
       const Mat K0 = reduced_matrix(sys, st, 0.0), Kf = reduced_matrix(sys, st, 0.0, false);
       EXPECT_EQ(f0.c.work, 0.0);
       EXPECT_LT(rel_diff(K0, Kf, kRed, kRed), 1e-15);
     }
+}
+
+// docs/THEORY.md §11.3: at the start iterate (no slip over the step, u_{n+1} = u_n on the
+// contact) an entry with a hint (its last slip's direction) carries the force along the hint's
+// tangential part, |f_T| = mu |f_N|, without turn terms; without a hint the direction is -t's.
+TEST(Coulomb, HeldAlongTheHintWhereNothingSlipsYet) {
+  System sys;
+  State st;
+  make(1, false, sys, st, false, 0.0);
+  double xs0[3], xm0[3][3], xs1[3], xm1[3][3];
+  sys.positions(sys.u0, xs0, xm0);
+  sys.positions(st.u, xs1, xm1);
+  const Vec g = sys.g(st.u);
+  k::FrictionlessBlocks b;
+  ASSERT_TRUE(k::frictionless_blocks(xs0, xs1, xm0, xm1, st.xi, g.data(), b, false));
+  k::SlipLaw law;
+  law.mu = 0.3;
+  law.weight = kWeight;
+  law.held = 1e-12;
+  const double hint[3] = {0.6, -0.8, 0.0};
+  for (int c = 0; c < 3; ++c) law.hint[c] = hint[c];
+  k::CoulombSlip held, free;
+  ASSERT_TRUE(k::coulomb_slip(xs0, xs1, xm0, xm1, st.xi, g.data(), law, b, held));
+  law.hint[0] = law.hint[1] = 0;
+  ASSERT_TRUE(k::coulomb_slip(xs0, xs1, xm0, xm1, st.xi, g.data(), law, b, free));
+  ASSERT_LE(held.slip, 1e-12);
+  double hn = 0, hT[3], h2 = 0, t[3], t2 = 0;
+  for (int c = 0; c < 3; ++c) hn += hint[c] * b.n[c];
+  for (int c = 0; c < 3; ++c) {
+    hT[c] = hint[c] - hn * b.n[c];
+    h2 += hT[c] * hT[c];
+    t[c] = g[c] - held.fN * b.n[c];
+    t2 += t[c] * t[c];
+  }
+  const double F = 0.3 * std::fabs(held.fN);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(held.fT[c], -F * hT[c] / std::sqrt(h2), 1e-15);
+    EXPECT_NEAR(free.fT[c], F * t[c] / std::sqrt(t2), 1e-12 * F);
+  }
+  for (int q = 0; q < 2; ++q)
+    for (int l = 0; l < 2; ++l) EXPECT_EQ(held.Xqq[q][l], 0.0);  // no turn of d
 }
