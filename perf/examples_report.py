@@ -27,12 +27,12 @@ CONSERVED = {'ball': [], 'three_disks': ['Lx', 'Ly', 'Jz'], 'hollow_cylinders': 
 # v0 / (1 + I / (m R^2)), I = (2/5) m (R^5 - r^5) / (R^3 - r^3) (angular momentum about the
 # contact point is conserved); in flight v_x and the spin are constant.
 ROLLING = {'ball_friction': dict(v0=2.0, R=0.4, r=0.2)}
-NOTES = {'ball_friction': 'The contact nodes slide as each impact starts and as it ends, and stick in between; the soft ball '
-                          '(E = 4e6 Pa) gives back the shear it stored while they stuck, so it leaves each '
-                          'bounce spinning a little faster or slower than rolling (omega R / v_x about 1 +- 0.2, '
-                          'the superball\'s alternation) and its v_x stays within a few percent of the rigid '
-                          'ball\'s rolling speed: it rolls on average. A rigid ball would lose '
-                          'k / (1 + k) = 31% of its kinetic energy (k = I / (m R^2)); this one dissipates 3.4%.'}
+NOTES = {'ball_friction': 'The contact nodes stick through most of each impact and slide where their force leaves '
+                          'the cone; the soft ball (E = 4e6 Pa) gives back the shear it stored while they stuck, '
+                          'so it leaves each bounce spinning faster or slower than rolling (omega R / v_x above: '
+                          'the superball\'s alternation) and its v_x alternates about the rigid ball\'s rolling '
+                          'speed. A rigid ball sliding into its first bounce would end it rolling, having lost '
+                          'k / (1 + k) = 31% of its kinetic energy (k = I / (m R^2)).'}
 
 
 def rolling(rows, v0, R, r):
