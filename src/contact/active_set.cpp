@@ -18,7 +18,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
                           const Solve& solve, SettledSet& out, Vector* p) {
   std::vector<Active> trial = active;
   for (auto& a : trial) {  // docs/THEORY.md §11.4: per step
-    a.pinned = false;
+    a.returns = 0;
     a.slid = a.slip;
   }
   std::set<int> released, pinned;
@@ -116,6 +116,9 @@ void ActiveSetLoop::accept(Positions x0, Positions x1, const Vector& g, std::vec
     double d = 0;
     for (const Law* law : contact_.laws()) d += law->dissipation(s, trial, g);
     Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 1, &d, &out.dissipated);
+    double cone = 0;  // §11.4: how far a sticking Coulomb entry is outside its cone
+    for (const Law* law : contact_.laws()) cone = std::max(cone, law->cone_ratio(s, trial, g));
+    Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_MAX, 1, &cone, &out.stats.cone_ratio);
   }
   for (const auto& a : trial) out.slip.push_back(a.slip ? 1 : 0);
   if (p) {  // docs/THEORY.md §7.4: the work the closure made the contact forces do

@@ -13,6 +13,9 @@
 namespace emc::contact {
 
 namespace {
+/// docs/THEORY.md §11.4: an entry returns to stick at most this often in a step, which bounds
+/// the active-set loop (perf/README.md, "Constants of the code, measured")
+constexpr int kMaxReturns = 5;
 
 class Coulomb final : public Law {
  public:
@@ -41,6 +44,8 @@ class Coulomb final : public Law {
   bool slides() const override { return slip_->slides(); }
   double dissipation(const LawState& s, const std::vector<Active>& active,
                      const Vector& g) const override;
+  double cone_ratio(const LawState& s, const std::vector<Active>& active,
+                    const Vector& g) const override;
 
  private:
   std::shared_ptr<const Law> stick_ = make_full_stick(Kind::coulomb);
@@ -68,8 +73,8 @@ std::vector<kernels::CoulombState> states(const LawState& s, const std::vector<A
   return std::vector<kernels::CoulombState>(h.data(), h.data() + h.extent(0));
 }
 
-/// A sliding entry returns to stick for the rest of the step at the CPP of x_{s,n} on its facet
-/// at t_n (§4.1: the frozen offset is then normal).
+/// A sliding entry returns to stick at the CPP of x_{s,n} on its facet at t_n (§4.1: the frozen
+/// offset is then normal); after kMaxReturns returns in a step it sticks to the step's end.
 void stick_at_start(const LawState& s, std::vector<Active>& active,
                     const std::vector<std::size_t>& which) {
   std::vector<Active> entries;
@@ -80,7 +85,7 @@ void stick_at_start(const LawState& s, std::vector<Active>& active,
   for (std::size_t j = 0; j < which.size(); ++j) {
     Active& a = active[which[j]];
     a.slip = false;
-    a.pinned = true;
+    ++a.returns;
     a.xi[0] = h(j, 0);
     a.xi[1] = h(j, 1);
   }
@@ -102,7 +107,7 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
       const double ft =
           std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] + c.trial[2] * c.trial[2]);
       // out of the cone (beyond its round-off) and not returned in this step: slide
-      if (a.pinned || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9))) continue;
+      if (a.returns >= kMaxReturns || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9))) continue;
       a.slip = true;
       for (int i = 0; i < 3; ++i) a.dir[i] = -c.trial[i] / ft;  // the slip the force resists
       ++changed;
@@ -151,6 +156,25 @@ int Coulomb::after_failure(const LawState& s, std::vector<Active>& active) const
     }
   if (!back.empty()) stick_at_start(s, active, back);
   return static_cast<int>(back.size());
+}
+
+// docs/THEORY.md §11.4: |f_T| / (mu f_N) of the sticking entries, f_T their trial force
+double Coulomb::cone_ratio(const LawState& s, const std::vector<Active>& active,
+                           const Vector& g) const {
+  std::vector<std::size_t> where;
+  const auto entries = mine(s.contact, active, where);
+  if (entries.empty()) return 0;
+  const auto st = states(s, entries, g);
+  double worst = 0;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const kernels::CoulombState& c = st[k];
+    const double mu = s.contact.pairs()[entries[k].pair].mu;
+    if (entries[k].slip || !(c.fN > 0) || !(mu > 0)) continue;
+    const double ft =
+        std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] + c.trial[2] * c.trial[2]);
+    worst = std::max(worst, ft / (mu * c.fN));
+  }
+  return worst;
 }
 
 // docs/THEORY.md §11.2: D_{n+1} - D_n = the work -f_T . s of the friction forces of the

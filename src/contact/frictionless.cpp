@@ -260,9 +260,9 @@ void Frictionless::after_update(const LawState& s, std::vector<Active>& active, 
 }
 
 // docs/THEORY.md §11.4: a solve that failed while sliding entries' slip turned against their
-// direction had no sliding solution for them: those entries (on any rank) stick for the rest of
-// the step and the others keep sliding; a solve that failed without such entries makes the
-// entries that did not slide at t_n stick.
+// direction had no sliding solution for them: those entries (on any rank) return to stick
+// (counted as in Coulomb::settle) and the others keep sliding; a solve that failed without such
+// entries makes the entries that did not slide at t_n stick.
 int Frictionless::after_failure(const LawState& s, std::vector<Active>& active) const {
   int changed = 0;
   const bool any_reversed = s.contact.global_count(static_cast<int>(reversed_.size())) > 0;
@@ -270,7 +270,7 @@ int Frictionless::after_failure(const LawState& s, std::vector<Active>& active) 
     if (a.slip && ((!any_reversed && !a.slid) ||
                    std::find(reversed_.begin(), reversed_.end(), a.slave) != reversed_.end())) {
       a.slip = false;
-      a.pinned = true;
+      ++a.returns;
       ++changed;
     }
   reversed_.clear();

@@ -22,7 +22,7 @@ struct Active {
   bool keep_gap = false;  ///< not closed although its pair closes gaps (re-activated, §7.2)
   // Coulomb friction (docs/THEORY.md §11)
   bool slip = false;          ///< slides (frictionless constraint plus friction) or sticks
-  bool pinned = false;        ///< returned to stick in this step: stays stick to its end (§11.4)
+  int returns = 0;            ///< returns to stick in this step (§11.4, at most kMaxReturns)
   bool slid = false;          ///< slid at t_n (the state the step started with)
   double dir[3] = {0, 0, 0};  ///< the slip direction of the last solve (or the trial's)
   bool operator<(const Active& o) const { return slave < o.slave; }
@@ -87,6 +87,9 @@ struct StepContactStats {
   int reactivated = 0;              ///< nodes released and activated again within the step (kept)
   double gap_min = 0, gap_max = 0;  ///< g_N at n+1 of the active nodes (global)
   double normal_force_min = 0;      ///< smallest f_N of the nodes active at the accepted solve
+  /// Coulomb (docs/THEORY.md §11.4): the largest |f_T| / (mu f_N) of the sticking entries with
+  /// f_N > 0 at the accepted solve (global; 0 without any)
+  double cone_ratio = 0;
 };
 
 /// docs/THEORY.md §7.2: the round-off of a gap g_N of a slave node at x on a facet of pair p
