@@ -117,7 +117,7 @@ void ActiveSetLoop::accept(Positions x0, Positions x1, const Vector& g, std::vec
     for (const Law* law : contact_.laws()) d += law->dissipation(s, trial, g);
     Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 1, &d, &out.dissipated);
     double cone = 0;  // §11.4: how far a sticking Coulomb entry is outside its cone
-    for (const Law* law : contact_.laws()) cone = std::max(cone, law->cone_ratio(s, trial, g));
+    for (const Law* law : contact_.laws()) cone = std::max(cone, law->cone_ratio());
     Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_MAX, 1, &cone, &out.stats.cone_ratio);
   }
   for (const auto& a : trial) out.slip.push_back(a.slip ? 1 : 0);

@@ -44,10 +44,11 @@ class Coulomb final : public Law {
   bool slides() const override { return slip_->slides(); }
   double dissipation(const LawState& s, const std::vector<Active>& active,
                      const Vector& g) const override;
-  double cone_ratio(const LawState& s, const std::vector<Active>& active,
-                    const Vector& g) const override;
+  double cone_ratio() const override { return cone_; }
 
  private:
+  /// |f_T| / (mu f_N) of the entries the last return map kept in stick, at most (§11.4)
+  mutable double cone_ = 0;
   std::shared_ptr<const Law> stick_ = make_full_stick(Kind::coulomb);
   std::shared_ptr<const Law> slip_ = make_frictionless(Kind::coulomb);
 };
@@ -95,6 +96,7 @@ void stick_at_start(const LawState& s, std::vector<Active>& active,
 int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector& g) const {
   std::vector<std::size_t> where;
   const auto entries = mine(s.contact, active, where);
+  cone_ = 0;
   if (entries.empty()) return 0;
   const auto st = states(s, entries, g);
   int changed = 0;
@@ -107,7 +109,10 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
       const double ft =
           std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] + c.trial[2] * c.trial[2]);
       // out of the cone (beyond its round-off) and not returned in this step: slide
-      if (a.returns >= kMaxReturns || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9))) continue;
+      if (a.returns >= kMaxReturns || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9))) {
+        if (c.fN > 0 && mu > 0) cone_ = std::max(cone_, ft / (mu * c.fN));
+        continue;
+      }
       a.slip = true;
       for (int i = 0; i < 3; ++i) a.dir[i] = -c.trial[i] / ft;  // the slip the force resists
       ++changed;
@@ -156,25 +161,6 @@ int Coulomb::after_failure(const LawState& s, std::vector<Active>& active) const
     }
   if (!back.empty()) stick_at_start(s, active, back);
   return static_cast<int>(back.size());
-}
-
-// docs/THEORY.md §11.4: |f_T| / (mu f_N) of the sticking entries, f_T their trial force
-double Coulomb::cone_ratio(const LawState& s, const std::vector<Active>& active,
-                           const Vector& g) const {
-  std::vector<std::size_t> where;
-  const auto entries = mine(s.contact, active, where);
-  if (entries.empty()) return 0;
-  const auto st = states(s, entries, g);
-  double worst = 0;
-  for (std::size_t k = 0; k < entries.size(); ++k) {
-    const kernels::CoulombState& c = st[k];
-    const double mu = s.contact.pairs()[entries[k].pair].mu;
-    if (entries[k].slip || !(c.fN > 0) || !(mu > 0)) continue;
-    const double ft =
-        std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] + c.trial[2] * c.trial[2]);
-    worst = std::max(worst, ft / (mu * c.fN));
-  }
-  return worst;
 }
 
 // docs/THEORY.md §11.2: D_{n+1} - D_n = the work -f_T . s of the friction forces of the

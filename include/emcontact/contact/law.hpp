@@ -75,11 +75,10 @@ class Law {
   /// docs/THEORY.md §11.2: the work -f_T . s of the friction force on my sliding entry of
   /// `slave` at the last iterate (0 if it has none).
   virtual double slip_work(int /*slave*/) const { return 0; }
-  /// docs/THEORY.md §11.4: the largest |f_T| / (mu f_N) of the law's sticking entries with
-  /// f_N > 0 at the solution (g its residual; local, 0 without any).
-  virtual double cone_ratio(const LawState&, const std::vector<Active>&, const Vector&) const {
-    return 0;
-  }
+  /// docs/THEORY.md §11.4: the largest |f_T| / (mu f_N) of the law's entries with f_N > 0 that
+  /// its last `settle` kept in stick (local, 0 without any): at the accepted solve, the
+  /// step's.
+  virtual double cone_ratio() const { return 0; }
   /// The energy the law's entries dissipated over the step at the solution (local sum).
   virtual double dissipation(const LawState&, const std::vector<Active>&, const Vector&) const {
     return 0;
