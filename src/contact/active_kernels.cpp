@@ -89,19 +89,24 @@ void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind)
       });
 }
 
-double master_points(Refs refs, Positions x, Values3 target) {
+double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d) {
   double moved = 0;
   Kokkos::parallel_reduce(
-      "emcontact::contact::master_points", Policy(0, count(refs)),
+      "emcontact::contact::stick_corrections", Policy(0, count(refs)),
       KOKKOS_LAMBDA(const int k, double& mx) {
         const ActiveRef a = refs(k);
-        double xm[3][3], N[3];
-        facet_at(x, a, xm);
+        double xm0[3][3], xm1[3][3], N[3];
+        facet_at(x0, a, xm0);
+        facet_at(x1, a, xm1);
         kernels::facet_shape(a.xi, N);
         for (int c = 0; c < 3; ++c) {
-          target(k, c) = N[0] * xm[0][c] + N[1] * xm[1][c] + N[2] * xm[2][c];
-          const double d = kernels::fabs(target(k, c) - x(a.s, c)) / a.edge;
-          if (d > mx) mx = d;
+          // the differences first: where nothing moved, the target is x_{s,n} exactly
+          double target = x0(a.s, c) + N[0] * (xm1[0][c] - xm0[0][c]) +
+                          N[1] * (xm1[1][c] - xm0[1][c]) + N[2] * (xm1[2][c] - xm0[2][c]);
+          if (a.closes) target = N[0] * xm1[0][c] + N[1] * xm1[1][c] + N[2] * xm1[2][c];
+          d(k, c) = target - x1(a.s, c);
+          const double m = kernels::fabs(d(k, c)) / a.edge;
+          if (m > mx) mx = m;
         }
       },
       Kokkos::Max<double>(moved));

@@ -26,6 +26,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   std::vector<double> fN;
   const Vector* g = nullptr;
   Positions x0, x1;
+  bool warm = false;  // §6.1-§6.2: a re-solve starts from the last solution
   for (;;) {
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
@@ -37,7 +38,8 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       Teuchos::TimeMonitor tm(*timer);  // the rows of P of a new set (§3)
       changed = constraints_.use(&trial, std::move(index));
     }
-    g = solve(changed, contact_.global_count(static_cast<int>(trial.size())) == 0);
+    g = solve(changed, contact_.global_count(static_cast<int>(trial.size())) == 0, warm);
+    warm = g != nullptr;
     if (!g) {
       // docs/THEORY.md §11.4: sliding entries whose slip turned back had no sliding solution:
       // they stick, and the step is solved again

@@ -1,6 +1,7 @@
 // Full stick (docs/THEORY.md §4): du_s = N(xi) du_m with xi frozen at activation; the slave's
-// three dofs become dummies with D = beta = tr(A_ss)/3 (eq. 44). With `close gap` (docs/THEORY.md
-// §7.2) Newton starts the slave on its master point, where du_s = N du_m keeps it.
+// three dofs become dummies with D = beta = tr(A_ss)/3 (eq. 44). Newton starts the slave where
+// its constraint wants it (on its master point with `close gap`, docs/THEORY.md §7.2), and
+// du_s = N du_m keeps it there.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 
@@ -59,30 +60,31 @@ void FullStick::rows(const LawState& s, const std::vector<Active>& active, const
   out.dummies.insert(out.dummies.end(), dummies.begin(), dummies.end());
 }
 
-// docs/THEORY.md §7.2: a closing slave starts at x_{s,n+1} = N x_{m,n+1}. A master node that is
-// a closing slave itself (a chain) moves in one sweep and its own slaves follow in the next.
+// §4.1: the start iterate satisfies every stick constraint: a slave starts at
+// x_{s,n} + N (x_{m,n+1} - x_{m,n}) of the start iterate (nothing moves where it is u_n; a re-solve
+// started from the last solution moves the entries activated since, docs/THEORY.md §6.1-§6.2),
+// a closing slave at x_{s,n+1} = N x_{m,n+1} (docs/THEORY.md §7.2). A master node that is a
+// slave itself (a chain) moves in one sweep and its own slaves follow in the next.
 void FullStick::start(const LawState& s, std::vector<Active>& active, Vector& u1) const {
   const Contact& contact = s.contact;
   const auto& m = contact.disc_model();
-  std::vector<Active> closing;
+  std::vector<Active> sticking;
   for (const auto& a : active)
-    if (mine(contact.pairs()[a.pair], a) && contact.closes(a) && !m.fixed[a.slave])
-      closing.push_back(a);
-  if (contact.global_count(static_cast<int>(closing.size())) == 0) return;
-  const Refs refs = contact.refs(closing);
-  Values3 target("emc::stick_targets", closing.size());
+    if (mine(contact.pairs()[a.pair], a) && !m.fixed[a.slave]) sticking.push_back(a);
+  if (contact.global_count(static_cast<int>(sticking.size())) == 0) return;
+  const Refs refs = contact.refs(sticking);
+  Values3 d("emc::stick_corrections", sticking.size());
   const auto& map = *contact.disc().owned_map();
   for (int sweep = 0; sweep < 8; ++sweep) {
-    const double moved = master_points(refs, contact.positions(u1), target);
-    auto th = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), target);
+    const double moved = stick_corrections(refs, s.x0, contact.positions(u1), d);
+    auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
     auto uv = u1.getLocalViewHost(Tpetra::Access::ReadWrite);
-    for (std::size_t k = 0; k < closing.size(); ++k)
+    for (std::size_t k = 0; k < sticking.size(); ++k)
       for (int c = 0; c < 3; ++c)
-        uv(map.getLocalElement(fem::dof_gid(closing[k].slave, c)), 0) =
-            th(k, c) - m.X[3 * closing[k].slave + c];
+        uv(map.getLocalElement(fem::dof_gid(sticking[k].slave, c)), 0) += dh(k, c);
     double all = 0;
     Teuchos::reduceAll(*contact.disc_comm(), Teuchos::REDUCE_MAX, 1, &moved, &all);
-    if (all <= 1e-13) break;  // round-off: every slave already sat on its master point
+    if (all <= 1e-13) break;  // round-off: every slave already sat where it must
   }
 }
 

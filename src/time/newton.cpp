@@ -21,6 +21,7 @@ NewtonOptions newton_options(const Teuchos::ParameterList& newton) {
   o.atol = newton.get<double>("absolute tolerance");
   o.max_iterations = newton.get<int>("max iterations");
   o.adaptive_linear_tolerance = newton.get<bool>("adaptive linear tolerance");
+  o.warm_resolves = newton.get<bool>("warm re-solves");
   return o;
 }
 
@@ -55,8 +56,9 @@ double Newton::linear_tolerance(const std::vector<double>& r, double floor) cons
   return std::min(eta_max, sigma * std::max(next, floor) / r.back());
 }
 
-NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
-  last_ = iterate(u0, V0, dt, u1);
+NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
+                           double reference) {
+  last_ = iterate(u0, V0, dt, u1, reference);
   if (last_.residuals.size() >= 2 && last_.residuals[0] > 0)
     contraction_ = last_.residuals[1] / (last_.residuals[0] * last_.residuals[0]);
   static const bool trace = std::getenv("EMC_NEWTON_TRACE") != nullptr;
@@ -70,7 +72,8 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
   return last_;
 }
 
-NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1) {
+NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1,
+                             double reference) {
   auto& t_asm = assembly_timer();
   auto& t_elim = elimination_timer();
   auto& t_solve = linear_solve_timer();
@@ -131,9 +134,9 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     }
     const double floor =
         std::max(opt_.atol, std::hypot(100 * eps * scale.norm2(), std::sqrt(total)));
-    const double target = std::max(opt_.rtol * r0, floor);
+    const double target = std::max(opt_.rtol * (reference > 0 ? reference : r0), floor);
     res.floor = floor;
-    if (r <= target && (it > 0 || r <= floor)) {
+    if (r <= target && (it > 0 || r <= floor || reference > 0)) {
       res.converged = true;
       return res;
     }
@@ -147,7 +150,7 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       std::snprintf(buf, sizeof buf,
                     "Newton did not converge in %d iterations (residual %.3e, initial %.3e, "
                     "target %.3e)",
-                    it, r, r0, std::max(opt_.rtol * r0, floor));
+                    it, r, r0, target);
       res.failure = buf;
       return res;
     }

@@ -57,6 +57,11 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_newton_parameters() {
           "quadratically converging Newton step leaves anyway (estimated from the residual "
           "history), never tighter than Solver/Linear/tolerance requires and never below the "
           "round-off floor; false: every solve to Solver/Linear/tolerance.");
+  pl->set("warm re-solves", true,
+          "Start each re-solve of a step's active-set loop (after contact nodes were activated "
+          "or released, docs/THEORY.md §6) from the last converged solve of the step, the new "
+          "constraints applied to it, with the relative tolerance taken from the step's first "
+          "solve; false: every solve starts from u_n.");
   return pl;
 }
 

@@ -53,15 +53,17 @@ void Stepper::start_iterate(double h, bool no_contact, Vector& u1) const {
 // One step of size h with the active-set loop of docs/THEORY.md §6; false if Newton failed.
 bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   const Vector& u0 = *s_.u;
-  auto newton = [&](bool empty) -> bool {
-    start_iterate(h, empty, u1);
-    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1);
+  double reference = 0;  // the first residual of the step's last cold start
+  auto newton = [&](bool empty, bool warm) -> bool {
+    if (!warm) start_iterate(h, empty, u1);
+    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1, warm ? reference : 0.0);
+    if (!warm && !nr.residuals.empty()) reference = nr.residuals.front();
     rep.newton_iterations += nr.iterations;
     rep.linear_iterations += nr.linear_iterations;
     if (!nr.converged) rep.last_failure = nr.failure;
     return nr.converged;
   };
-  if (!loop_) return newton(true);
+  if (!loop_) return newton(true, false);
   // the prediction of u_{n+1} (the reach of the contact nodes, docs/THEORY.md §8)
   u1.assign(u0);
   if (s_.last_increment && s_.last_h > 0) u1.update(h / s_.last_h, *s_.last_increment, 1.0);
@@ -69,10 +71,10 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   Teuchos::TimeMonitor tm(contact_timer());  // the loop's own work; Newton's is its own
   const bool ok = loop_->solve(
       u0, u1, s_.active,
-      [&](bool changed, bool empty) -> const Vector* {
+      [&](bool changed, bool empty, bool warm) -> const Vector* {
         if (changed) newton_.solver().matrix_changed();  // a new P: the preconditioner is stale
         contact_timer().stop();
-        const bool converged = newton(empty);
+        const bool converged = newton(empty, warm && newton_.options().warm_resolves);
         contact_timer().start();
         return converged ? &newton_.last_residual() : nullptr;
       },

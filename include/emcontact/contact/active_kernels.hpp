@@ -58,9 +58,11 @@ void position_roundoff(Refs refs, Positions x1, Values r);
 /// docs/THEORY.md §7.2: 1 where the slave lies behind its facet at x deeper than the round-off.
 void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind);
 
-/// docs/THEORY.md §7.2: the master point N(xi) x_m at x of every entry (the closing target) and
-/// the largest distance of a slave from it in units of the facet size.
-double master_points(Refs refs, Positions x, Values3 target);
+/// §4.1, docs/THEORY.md §7.2: the move d(k) that puts entry k's slave where its stick
+/// constraint wants it at x1: x_{s,n} + N (x_{m,n+1} - x_{m,n}) (the offset of t_n kept; exactly
+/// x_{s,n} where the masters did not move), or N x_{m,n+1} for a closing entry; returns the
+/// largest |d| in units of the facet size.
+double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d);
 
 /// §5 steps 2-3 on each frictionless entry's current facet: xi and x_{s,n+1} in place
 /// (xs1 starts at x1's slave), outside = how far xi lies outside the facet.

@@ -34,9 +34,10 @@ class ActiveSetLoop {
   linalg::ConstraintHooks* hooks() { return &constraints_; }
 
   /// One Newton solve of the step with the trial set applied (P rebuilt if `changed`; `empty`:
-  /// no rank has an active entry). Resets u1 to its start iterate; returns the contactless
-  /// residual at the solution, or null if Newton failed.
-  using Solve = std::function<const Vector*(bool changed, bool empty)>;
+  /// no rank has an active entry). `warm`: u1 holds the last converged solve of the step, the
+  /// start iterate (docs/THEORY.md §6.1-§6.2); else u1 is reset to the step's start iterate.
+  /// Returns the contactless residual at the solution, or null if Newton failed.
+  using Solve = std::function<const Vector*(bool changed, bool empty, bool warm)>;
 
   /// §6: the step from u0 with the set `active` at t_n; u1 holds a prediction of u_{n+1} on
   /// entry (the reach of the contact nodes) and the solution on return. p (or null): the

@@ -2,7 +2,9 @@
 // Newton on the full residual of eq. 20, reduced by the elimination (docs/THEORY.md §1.6, §3):
 //   (P^T A P + D) dq = -P^T g,  u_{n+1} += P dq,
 // converged when ||P^T g|| <= max(rtol ||P^T g_0||, atol, 100 eps ||scale||), where scale
-// bounds the round-off of g's four terms. No step is ever accepted unconverged.
+// bounds the round-off of g's four terms and g_0 is the step's first start iterate (a re-solve
+// of the active-set loop started from the last solution keeps it). No step is ever accepted
+// unconverged.
 #include <Teuchos_ParameterList.hpp>
 #include <functional>
 #include <string>
@@ -19,6 +21,7 @@ struct NewtonOptions {
   int max_iterations = 25;
   bool adaptive_linear_tolerance = true;  ///< see Newton::linear_tolerance
   bool skip_last_matrix = true;           ///< no Newton matrix at an iterate predicted to converge
+  bool warm_resolves = true;  ///< the active-set loop's re-solves start from the last solve
 };
 NewtonOptions newton_options(const Teuchos::ParameterList& newton);
 
@@ -39,7 +42,11 @@ class Newton {
          NewtonOptions opt);
 
   /// Solves eq. 20 for u1 given (u0, V0) at t_n; u1 holds the start guess on entry.
-  NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1);
+  /// reference > 0: the relative tolerance applies to it instead of this solve's first residual
+  /// (a re-solve of the step started from the last solution, docs/THEORY.md §6.1-§6.2), and the
+  /// start iterate is accepted if it meets that tolerance already.
+  NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
+                     double reference = 0);
 
   /// Constraints that change inside Newton (contact); null: only the fixed elimination.
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
@@ -54,9 +61,10 @@ class Newton {
   /// The contactless residual g of eq. 20 at the last iterate (contact forces, §4).
   const Vector& last_residual() const { return *g_; }
   const fem::Discretization& disc() const { return disc_; }
+  const NewtonOptions& options() const { return opt_; }
 
  private:
-  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1);
+  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1, double reference);
   double linear_tolerance(const std::vector<double>& r, double floor) const;
   /// C r_k^2 with C = r_k / r_{k-1}^2 (or the last step's); < 0 when there is no estimate.
   double predicted_next(const std::vector<double>& r) const;
