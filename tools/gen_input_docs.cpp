@@ -44,6 +44,15 @@ docs/THEORY.md §6.3). A named surface only saves search work. A pair whose slav
 penetrate the master at t = 0 (overlapping bodies, or a rigid surface whose normal points away
 from the slave) is refused before the first step.
 
+Where faces meet flush and stay pressed together (an impact of equal faces, a stack), take the
+contact face as the slave (`body/surface`) and set `massless slave = true`: a slave node held on
+the master keeps the velocity it had when caught, reversed every step, and its inertia can pull
+it off again, so some nodes cycle between caught and released while the face is compressed
+(docs/THEORY.md §6.4). Without mass on the slave face they do not: two equal bars meeting end to
+end keep their face in contact from the first touch to the separation with 3 changes of the
+active set instead of 56, and take 26-30% fewer Newton iterations (§6.8). The total mass, L, J
+and E are kept; the slave face's mass moves to the nodes behind it.
+
 )";
 
 }  // namespace

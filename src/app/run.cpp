@@ -228,10 +228,11 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   const auto& P = *sim->in.params;
   auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
   sim->model = fem::build_model(P, std::move(meshes), opt.input);
+  auto pairs = contact::build_pairs(P, sim->model, opt.input);
+  contact::mark_massless_slaves(pairs, sim->model);  // before the element data are built
   sim->disc = std::make_unique<fem::Discretization>(sim->model, comm);
   const auto& disc = *sim->disc;
-  sim->contact =
-      std::make_unique<contact::Contact>(disc, contact::build_pairs(P, sim->model, opt.input));
+  sim->contact = std::make_unique<contact::Contact>(disc, std::move(pairs));
   if (opt.restart.empty()) sim->contact->check_initial_penetration(opt.input);
   check_contact_scales(sim->model, sim->contact->pairs(), opt.input);
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());

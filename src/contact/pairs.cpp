@@ -131,6 +131,12 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
                        " is only used with type = coulomb (type is \"" + type + "\")");
     }
     p.close_gap = c.get<bool>("close gap");
+    p.massless_slave = c.get<bool>("massless slave");
+    if (p.massless_slave && p.close_gap)
+      throw InputError(where +
+                       ": massless slave = true and close gap = true cannot be combined "
+                       "(the closure gives its energy back through the inverse mass matrix, "
+                       "which massless nodes do not have); allowed: one of them");
     const SurfaceRef s = parse_ref(model, c.get<std::string>("slave"), where + "/slave");
     const SurfaceRef m = parse_ref(model, c.get<std::string>("master"), where + "/master");
     const fem::Body& sb = model.bodies[s.body];
@@ -161,6 +167,14 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     pairs.push_back(std::move(p));
   }
   return pairs;
+}
+
+void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model) {
+  for (const auto& p : pairs) {
+    if (!p.massless_slave) continue;
+    model.massless.resize(model.num_nodes(), 0);
+    for (int s : p.slaves) model.massless[s] = 1;
+  }
 }
 
 }  // namespace emc::contact

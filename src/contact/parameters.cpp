@@ -46,6 +46,13 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
           "closure takes (or gives) is restored by a velocity update along the contact "
           "normals that keeps L and J, so energy stays conserved. false: an activated node "
           "keeps its gap at activation (§6.5).");
+  pl->set("massless slave", false,
+          "true: the slave surface's nodes carry no mass; each element moves the mass of its "
+          "slave nodes to its other nodes (the total stays; docs/THEORY.md §6.8). A held slave "
+          "node then has no inertia whose reflected velocity could pull it off the master, so "
+          "nodes do not cycle between caught and released. Declare the contact face as the "
+          "slave (body/surface), not a whole body: the mass of an element with all four nodes on "
+          "the slave surface stays where it is. Not with close gap.");
   pl->set("friction coefficient", 0.0,
           "Coulomb friction coefficient mu >= 0 of the pair (type = coulomb only; any other "
           "type refuses a nonzero value). mu = 0 slides as frictionless; a large mu sticks as "

@@ -48,7 +48,7 @@ struct TetNewton {
       for (int p = 0; p < 12; ++p)
         for (int q = 0; q < 12; ++q) Ae[p][q] = 0;
     kernels::newton_tet4(Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, integ, dt, st, re,
-                         want_matrix ? Ae : nullptr, want_scale ? se : nullptr);
+                         want_matrix ? Ae : nullptr, want_scale ? se : nullptr, ev.massless(k));
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) {
         const int row = 3 * ev.node_lid(k, a) + i;
@@ -169,7 +169,8 @@ kernels::Monitors Discretization::monitors(const Vector& u, const Vector& V) con
         ev.gather(vu, k, uk);
         ev.gather(vV, k, Vk);
         const double gk[3] = {g0, g1, g2};
-        kernels::monitors_tet4(xk, Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, uk, Vk, m);
+        kernels::monitors_tet4(xk, Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, uk, Vk, m,
+                               ev.massless(k));
       },
       sum);
   double local[13] = {sum.kinetic,   sum.elastic,   sum.potential, sum.L[0], sum.L[1],

@@ -65,11 +65,15 @@ void Discretization::build_element_data() {
   auto mu = Kokkos::create_mirror_view(ev.mu);
   auto rho = Kokkos::create_mirror_view(ev.rho);
   auto lid = Kokkos::create_mirror_view(ev.node_lid);
+  ev.massless_nodes = decltype(ev.massless_nodes)("emc::massless_nodes", ne);
+  auto light = Kokkos::create_mirror_view(ev.massless_nodes);
   for (int k = 0; k < ne; ++k) {
     const int e = part_.my_tets[k];
     double x[4][3], g[4][3];
+    light(k) = 0;
     for (int a = 0; a < 4; ++a) {
       const int n = model_.tets[4 * e + a];
+      if (!model_.massless.empty() && model_.massless[n]) light(k) |= 1 << a;
       lid(k, a) = overlap_->getLocalElement(dof_gid(n, 0)) / 3;
       for (int i = 0; i < 3; ++i) x[a][i] = X(k, a, i) = model_.X[3 * n + i];
     }
@@ -92,6 +96,7 @@ void Discretization::build_element_data() {
   Kokkos::deep_copy(ev.mu, mu);
   Kokkos::deep_copy(ev.rho, rho);
   Kokkos::deep_copy(ev.node_lid, lid);
+  Kokkos::deep_copy(ev.massless_nodes, light);
 }
 
 void Discretization::build_graph() {

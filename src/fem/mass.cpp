@@ -21,7 +21,7 @@ struct TetMass {
   KOKKOS_INLINE_FUNCTION void element(const int k) const {
     double vk[4][3], pk[4][3];
     ev.gather(v, k, vk);
-    kernels::mass_times(ev.rho(k), ev.Ve(k), vk, pk);
+    kernels::mass_times(ev.rho(k), ev.Ve(k), ev.massless(k), vk, pk);
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) scatter_add<Atomic>(Mv(3 * ev.node_lid(k, a) + i, 0), pk[a][i]);
   }

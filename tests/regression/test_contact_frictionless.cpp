@@ -39,6 +39,28 @@ TEST(Frictionless, TwoDeformableBodiesConserveEJL) {
   EXPECT_LT(d.J, 1e-8);
 }
 
+// The same with the slave's nodes massless (docs/THEORY.md §6.8): the modified mass matrix is
+// symmetric and a scalar times I_3 per node pair, so the scheme still conserves E, L and J.
+TEST(Frictionless, MasslessSlaveConservesEJL) {
+  const auto rows = run_case(
+      "two_blocks.xml", {"Contact/A on B/type=frictionless", "Contact/A on B/massless slave=true"},
+      "out_two_blocks_fl_massless");
+  const double p_scale = 8.0 * std::hypot(0.5, 0.1) + 8.0 * std::hypot(0.3, 0.1);
+  double dL = 0;
+  int contact = 0;
+  for (const auto& r : rows) {
+    dL = std::max(dL, norm3(diff3(r.L, rows[0].L)) / p_scale);
+    contact += r.active_contacts > 0;
+  }
+  const auto d = drifts(rows);
+  std::printf("two blocks frictionless, massless slave: %d contact steps; E %.3e L %.3e J %.3e\n",
+              contact, d.E, dL, d.J);
+  EXPECT_GT(contact, 3);
+  EXPECT_LT(d.E, 1e-8);
+  EXPECT_LT(dL, 1e-8);
+  EXPECT_LT(d.J, 1e-8);
+}
+
 // A block landing and sliding on a fixed frictionless plane under gravity: the tangential
 // momentum (Lx, Ly) and the spin about the normal (Jz) are unchanged, E is conserved, no
 // accepted active node pulls (f_N >= 0) and none penetrates.

@@ -17,10 +17,11 @@ enum class Kind { full_stick, frictionless, coulomb };
 struct Pair {
   std::string name;
   Kind kind = Kind::full_stick;
-  double mu = 0;            ///< Coulomb friction coefficient (docs/THEORY.md §11)
-  double dmax = 0;          ///< activation only for -dmax < g_N < 0 (§6.3)
-  bool close_gap = false;   ///< active nodes end every step on the master (docs/THEORY.md §7)
-  std::vector<int> slaves;  ///< global node ids, sorted
+  double mu = 0;                ///< Coulomb friction coefficient (docs/THEORY.md §11)
+  double dmax = 0;              ///< activation only for -dmax < g_N < 0 (§6.3)
+  bool close_gap = false;       ///< active nodes end every step on the master (docs/THEORY.md §7)
+  bool massless_slave = false;  ///< the slave nodes' mass moved inward (docs/THEORY.md §6.8)
+  std::vector<int> slaves;      ///< global node ids, sorted
   std::vector<std::array<int, 3>> facets;  ///< geometry node ids, outward from the master
   int master_body = -1;
   bool rigid_master = false;
@@ -35,6 +36,10 @@ struct Pair {
 /// naming `file` and the parameter for unknown bodies/surfaces or a rigid slave.
 std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::Model& model,
                               const std::string& file);
+
+/// docs/THEORY.md §6.8: marks the slave nodes of the pairs with `massless slave` in
+/// model.massless (left empty when no pair asks for it).
+void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model);
 
 /// Current positions of every geometry node: X + u for deformable nodes (u: all 3 N
 /// displacements, replicated), rigid_X for the rigid ones.

@@ -23,6 +23,9 @@ struct ElementViews {
   Kokkos::View<double*, ExecSpace> Ve, lambda, mu, rho;
   Kokkos::View<int* [4], ExecSpace> node_lid;  ///< node index in the overlap map (dof 3k+c)
   Kokkos::View<int* [12], ExecSpace> col_lid;  ///< dof columns in the graph's column map
+  /// bit a set: the element's node a is massless (docs/THEORY.md §6.8; 0 for every element
+  /// when no pair asks for it)
+  Kokkos::View<int*, ExecSpace> massless_nodes;
 
   int size() const { return static_cast<int>(Ve.extent(0)); }
   KOKKOS_INLINE_FUNCTION void gradients(int k, double Gk[4][3]) const {
@@ -30,6 +33,7 @@ struct ElementViews {
       for (int i = 0; i < 3; ++i) Gk[a][i] = G(k, a, i);
   }
   KOKKOS_INLINE_FUNCTION kernels::Lame lame(int k) const { return {lambda(k), mu(k)}; }
+  KOKKOS_INLINE_FUNCTION int massless(int k) const { return massless_nodes(k); }
   /// The element's values of an overlap vector (3 per node).
   template <class View>
   KOKKOS_INLINE_FUNCTION void gather(const View& v, int k, double out[4][3]) const {

@@ -30,7 +30,10 @@ struct Model {
   std::vector<int> tets;         ///< 4 global node ids per tet
   std::vector<int> body_of_tet;  ///< body index per tet
   std::vector<Body> bodies;
-  std::vector<char> fixed;      ///< per global node: displacement prescribed to zero
+  std::vector<char> fixed;  ///< per global node: displacement prescribed to zero
+  /// per global node (or empty): its mass is moved to the other nodes of its elements
+  /// (docs/THEORY.md §6.8; the slave surfaces of pairs with `massless slave = true`)
+  std::vector<char> massless;
   std::vector<double> rigid_X;  ///< nodes of the rigid surface bodies, 3 each
   std::array<double, 3> gravity{};
   kernels::Integrator integrator = kernels::Integrator::energy_momentum;

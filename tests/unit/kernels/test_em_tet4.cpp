@@ -42,6 +42,25 @@ const k::Lame kMat = k::lame(200.0, 0.3);
 
 class Integrators : public ::testing::TestWithParam<k::Integrator> {};
 
+/// |A - the central finite-difference Jacobian of newton_tet4's residual in u1| / |A|.
+double jacobian_error(const Element& e, double rho, const double grav[3], double dt,
+                      const k::ElementState& s, int massless, const double A[12][12]) {
+  const double h = 1e-6;
+  double diff[12][12];
+  for (int c = 0; c < 12; ++c) {
+    k::ElementState p = s, m = s;
+    p.u1[c / 3][c % 3] += h;
+    m.u1[c / 3][c % 3] -= h;
+    double rp[12], rm[12];
+    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, p, rp, nullptr,
+                   nullptr, massless);
+    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, m, rm, nullptr,
+                   nullptr, massless);
+    for (int q = 0; q < 12; ++q) diff[q][c] = A[q][c] - (rp[q] - rm[q]) / (2 * h);
+  }
+  return frob(diff) / frob(A);
+}
+
 }  // namespace
 
 TEST(Tet4, GradientsSumToZeroAndVolume) {
@@ -193,24 +212,9 @@ TEST(NewtonTet4, MassAndJacobian) {
   random_u(rng, 0.5, s.V0);
   random_u(rng, 0.2, s.u1);
   const double grav[3] = {0.1, -0.2, -9.81}, dt = 0.05, rho = 7.0;
-  double r[12], A[12][12] = {}, Afd[12][12], scale[12];
+  double r[12], A[12][12] = {}, scale[12];
   k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, s, r, A, scale);
-  const double h = 1e-6;
-  for (int c = 0; c < 12; ++c) {
-    k::ElementState p = s, m = s;
-    p.u1[c / 3][c % 3] += h;
-    m.u1[c / 3][c % 3] -= h;
-    double rp[12], rm[12];
-    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, p, rp, nullptr,
-                   nullptr);
-    k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, m, rm, nullptr,
-                   nullptr);
-    for (int q = 0; q < 12; ++q) Afd[q][c] = (rp[q] - rm[q]) / (2 * h);
-  }
-  double diff[12][12];
-  for (int q = 0; q < 12; ++q)
-    for (int c = 0; c < 12; ++c) diff[q][c] = A[q][c] - Afd[q][c];
-  EXPECT_LT(frob(diff) / frob(A), 1e-6);
+  EXPECT_LT(jacobian_error(e, rho, grav, dt, s, 0, A), 1e-6);
   for (int q = 0; q < 12; ++q) EXPECT_GE(scale[q], std::fabs(r[q]));
 }
 
@@ -236,4 +240,67 @@ TEST(Monitors, RigidTranslation) {
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) xc[i] += e.X[a][i] / 4;
   EXPECT_NEAR(m.J[2], mass * (xc[0] * V[0][1] - xc[1] * V[0][0]), 1e-14);
+}
+
+// docs/THEORY.md §6.8, massless nodes (every pattern of 1 to 3 of the 4): M' is symmetric with
+// zero rows at the massless nodes, keeps the total mass, is positive definite on the massive
+// nodes (Cholesky of that block), mass_times applies it, a rigid translation keeps m v and
+// 1/2 m v^2, and the Newton kernel's matrix is still the derivative of its residual.
+TEST(NewtonTet4, MasslessNodesKeepTheMass) {
+  Element e = make_element();
+  const double rho = 7.0, m = rho * e.Ve;
+  for (int mask = 1; mask < 15; ++mask) {
+    double M[4][4];
+    k::mass_matrix(rho, e.Ve, mask, M);
+    double total = 0;
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        total += M[a][b];
+        EXPECT_EQ(M[a][b], M[b][a]) << "mask " << mask;
+        if ((mask >> a) & 1) EXPECT_EQ(M[a][b], 0.0) << "mask " << mask;
+      }
+    EXPECT_NEAR(total, m, 1e-14 * m) << "mask " << mask;
+    int heavy[4], nh = 0;  // Cholesky of the massive block
+    for (int a = 0; a < 4; ++a)
+      if (!((mask >> a) & 1)) heavy[nh++] = a;
+    double L[4][4] = {};
+    for (int i = 0; i < nh; ++i)
+      for (int j = 0; j <= i; ++j) {
+        double s = M[heavy[i]][heavy[j]];
+        for (int q = 0; q < j; ++q) s -= L[i][q] * L[j][q];
+        if (i == j) {
+          ASSERT_GT(s, 1e-3 * m) << "mask " << mask;
+          L[i][i] = std::sqrt(s);
+        } else {
+          L[i][j] = s / L[j][j];
+        }
+      }
+    std::mt19937 rng(mask);
+    double v[4][3], p[4][3];
+    random_u(rng, 1.0, v);
+    k::mass_times(rho, e.Ve, mask, v, p);
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) {
+        double q = 0;
+        for (int b = 0; b < 4; ++b) q += M[a][b] * v[b][i];
+        EXPECT_NEAR(p[a][i], q, 1e-15 * m) << "mask " << mask;
+      }
+    const double u[4][3] = {}, grav[3] = {0, 0, 0};
+    double V[4][3];
+    for (int a = 0; a < 4; ++a) V[a][0] = 1.0, V[a][1] = -2.0, V[a][2] = 0.5;
+    k::Monitors mon;
+    k::monitors_tet4(e.X, e.G, e.Ve, kMat, rho, grav, u, V, mon, mask);
+    EXPECT_NEAR(mon.kinetic, 0.5 * m * 5.25, 1e-14 * m);
+    EXPECT_NEAR(mon.L[1], -2.0 * m, 1e-14 * m);
+
+    k::ElementState s;
+    random_u(rng, 0.2, s.u0);
+    random_u(rng, 0.5, s.V0);
+    random_u(rng, 0.2, s.u1);
+    const double g[3] = {0.1, -0.2, -9.81}, dt = 0.05;
+    double r[12], A[12][12] = {};
+    k::newton_tet4(e.G, e.Ve, kMat, rho, g, k::Integrator::energy_momentum, dt, s, r, A, nullptr,
+                   mask);
+    EXPECT_LT(jacobian_error(e, rho, g, dt, s, mask, A), 1e-6) << "mask " << mask;
+  }
 }
