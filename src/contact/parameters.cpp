@@ -52,7 +52,9 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
           "node then has no inertia whose reflected velocity could pull it off the master, so "
           "nodes do not cycle between caught and released. Declare the contact face as the "
           "slave (body/surface), not a whole body: the mass of an element with all four nodes on "
-          "the slave surface stays where it is. Not with close gap.");
+          "the slave surface stays where it is. For flush faces that stay pressed; it costs "
+          "where a free surface rings (the paper's ball: 5.26 instead of 3.74 Newton "
+          "iterations per step). Not with close gap.");
   pl->set("friction coefficient", 0.0,
           "Coulomb friction coefficient mu >= 0 of the pair (type = coulomb only; any other "
           "type refuses a nonzero value). mu = 0 slides as frictionless; a large mu sticks as "
