@@ -47,7 +47,7 @@ KOKKOS_INLINE_FUNCTION void monitors_tet4(const double X[4][3], const double G[4
                                           int massless = 0) {
   double p[4][3], M[4][4];
   mass_times(rho, Ve, massless, V, p);
-  mass_matrix(rho, Ve, massless, M);
+  if (massless) mass_matrix(rho, Ve, massless, M);  // its row sums, for the centre of mass
   out.mass += rho * Ve;
   for (int a = 0; a < 4; ++a) {
     const double x[3] = {X[a][0] + u[a][0], X[a][1] + u[a][1], X[a][2] + u[a][2]};

@@ -70,10 +70,9 @@ void Discretization::build_element_data() {
   for (int k = 0; k < ne; ++k) {
     const int e = part_.my_tets[k];
     double x[4][3], g[4][3];
-    light(k) = 0;
+    light(k) = massless_mask(model_, e);
     for (int a = 0; a < 4; ++a) {
       const int n = model_.tets[4 * e + a];
-      if (!model_.massless.empty() && model_.massless[n]) light(k) |= 1 << a;
       lid(k, a) = overlap_->getLocalElement(dof_gid(n, 0)) / 3;
       for (int i = 0; i < 3; ++i) x[a][i] = X(k, a, i) = model_.X[3 * n + i];
     }

@@ -106,6 +106,14 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
   return m;
 }
 
+int massless_mask(const Model& m, int e) {
+  int mask = 0;
+  if (m.massless.empty()) return mask;
+  for (int a = 0; a < 4; ++a)
+    if (m.massless[m.tets[4 * e + a]]) mask |= 1 << a;
+  return mask;
+}
+
 std::array<double, 3> centre_of_mass(const Model& m, int b) {
   double vol = 0;
   std::array<double, 3> c{};
@@ -115,9 +123,7 @@ std::array<double, 3> centre_of_mass(const Model& m, int b) {
       for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
     const double v = kernels::tet_volume(x);
     vol += v;
-    int massless = 0;  // docs/THEORY.md §6.8: the centre of the mass matrix's row sums
-    for (int a = 0; a < 4; ++a)
-      if (!m.massless.empty() && m.massless[m.tets[4 * e + a]]) massless |= 1 << a;
+    const int massless = massless_mask(m, e);  // §6.8: the centre of the mass's row sums
     if (massless == 0) {
       for (int i = 0; i < 3; ++i) c[i] += v * 0.25 * (x[0][i] + x[1][i] + x[2][i] + x[3][i]);
       continue;

@@ -21,11 +21,8 @@ inline std::vector<std::array<double, 3>> body_momenta(emc::app::Simulation& sim
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
     const double rho = m.bodies[m.body_of_tet[e]].density;
-    int massless = 0;  // docs/THEORY.md §6.8
-    for (int a = 0; a < 4; ++a)
-      if (!m.massless.empty() && m.massless[m.tets[4 * e + a]]) massless |= 1 << a;
-    double M[4][4];
-    emc::kernels::mass_matrix(rho, emc::kernels::tet_volume(x), massless, M);
+    double M[4][4];  // docs/THEORY.md §6.8
+    emc::kernels::mass_matrix(rho, emc::kernels::tet_volume(x), emc::fem::massless_mask(m, e), M);
     for (int a = 0; a < 4; ++a) lumped[m.tets[4 * e + a]] += M[a][0] + M[a][1] + M[a][2] + M[a][3];
   }
   std::vector<std::array<double, 3>> p(m.bodies.size(), {0, 0, 0});

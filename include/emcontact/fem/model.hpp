@@ -54,5 +54,7 @@ std::vector<double> initial_velocity(const Model& m);
 
 /// Centre of mass of body b in the reference configuration.
 std::array<double, 3> centre_of_mass(const Model& m, int b);
+/// docs/THEORY.md §6.8: bit a set when node a of tet e is massless (0 without massless nodes).
+int massless_mask(const Model& m, int e);
 
 }  // namespace emc::fem
