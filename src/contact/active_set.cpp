@@ -26,19 +26,21 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   std::vector<double> fN;
   const Vector* g = nullptr;
   Positions x0, x1;
-  bool warm = false;  // §6.1-§6.2: a re-solve starts from the last solution
+  bool warm = false;      // §6.1-§6.2: a re-solve starts from the last solution
+  bool search = search_;  // §6.9: search the set, then solve it to the full tolerance
   for (;;) {
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
     ActiveIndex index = contact_.gather(trial);
     contact_.select(u0, u1, index);
+    const bool empty = contact_.global_count(static_cast<int>(trial.size())) == 0;
     bool changed;
     {
       static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: new P");
       Teuchos::TimeMonitor tm(*timer);  // the rows of P of a new set (§3)
       changed = constraints_.use(&trial, std::move(index));
     }
-    g = solve(changed, contact_.global_count(static_cast<int>(trial.size())) == 0, warm);
+    g = solve(changed, empty, warm, search);
     warm = g != nullptr;
     if (!g) {
       // docs/THEORY.md §11.4: sliding entries whose slip turned back had no sliding solution:
@@ -86,7 +88,11 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       next.push_back(a);
     }
     const int changes = contact_.global_count(static_cast<int>(fresh.size()) + n_release + n_state);
-    if (changes == 0) break;
+    if (changes == 0 && !search) break;
+    if (changes == 0) {  // §6.9: settled at the search tolerance; now solve it to the full one
+      search = false;
+      continue;
+    }
     std::sort(next.begin(), next.end());
     trial = std::move(next);
     ++out.stats.resolves;

@@ -27,9 +27,11 @@ LawState ActiveConstraints::state(Positions x1) const {
 bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
   trial_ = trial;
   std::vector<std::array<double, 5>> key;
+  std::vector<std::array<int, 2>> members;
   std::vector<int> count(contact_.laws().size(), 0);
   for (const auto& a : *trial) {
     key.push_back({double(a.slave), double(a.facet), a.xi[0], a.xi[1], double(a.slip)});
+    members.push_back({a.slave, a.slip ? 1 : 0});
     const Law* law = &contact_.law(a.pair);
     for (std::size_t l = 0; l < count.size(); ++l) count[l] += contact_.laws()[l] == law;
   }
@@ -41,6 +43,8 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
       iterate_dependent_ |= contact_.laws()[l]->iterate_dependent();
     }
   index_ = std::move(index);
+  const bool new_members = contact_.global_count(members == members_ ? 0 : 1) > 0;
+  members_ = std::move(members);
   if (iterate_dependent_) applied_.clear();  // P is rebuilt at every iterate anyway
   if (contact_.global_count(key == applied_ ? 0 : 1) == 0) return false;
   LawRows out;
@@ -49,7 +53,7 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
   dummies_ = out.dummies;
   elim_.set_constraints(fixed_, out.rows, {});
   applied_ = std::move(key);
-  return true;
+  return !iterate_dependent_ || new_members;
 }
 
 // §5: the start iterate is projected (update steps 2-3), so that it satisfies (a) and (b);

@@ -22,6 +22,7 @@ NewtonOptions newton_options(const Teuchos::ParameterList& newton) {
   o.max_iterations = newton.get<int>("max iterations");
   o.adaptive_linear_tolerance = newton.get<bool>("adaptive linear tolerance");
   o.warm_resolves = newton.get<bool>("warm re-solves");
+  o.search_rtol = newton.get<double>("search tolerance");
   return o;
 }
 
@@ -57,8 +58,8 @@ double Newton::linear_tolerance(const std::vector<double>& r, double floor) cons
 }
 
 NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                           double reference) {
-  last_ = iterate(u0, V0, dt, u1, reference);
+                           double reference, double rtol) {
+  last_ = iterate(u0, V0, dt, u1, reference, rtol > 0 ? rtol : opt_.rtol);
   if (last_.residuals.size() >= 2 && last_.residuals[0] > 0)
     contraction_ = last_.residuals[1] / (last_.residuals[0] * last_.residuals[0]);
   static const bool trace = std::getenv("EMC_NEWTON_TRACE") != nullptr;
@@ -73,7 +74,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
 }
 
 NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                             double reference) {
+                             double reference, double rtol) {
   auto& t_asm = assembly_timer();
   auto& t_elim = elimination_timer();
   auto& t_solve = linear_solve_timer();
@@ -134,7 +135,7 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     }
     const double floor =
         std::max(opt_.atol, std::hypot(100 * eps * scale.norm2(), std::sqrt(total)));
-    const double target = std::max(opt_.rtol * (reference > 0 ? reference : r0), floor);
+    const double target = std::max(rtol * std::max(reference, r0), floor);
     res.floor = floor;
     if (r <= target && (it > 0 || r <= floor || reference > 0)) {
       res.converged = true;

@@ -60,8 +60,15 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_newton_parameters() {
   pl->set("warm re-solves", true,
           "Start each re-solve of a step's active-set loop (after contact nodes were activated "
           "or released, docs/THEORY.md §6) from the last converged solve of the step, the new "
-          "constraints applied to it, with the relative tolerance taken from the step's first "
-          "solve; false: every solve starts from u_n.");
+          "constraints applied to it, the relative tolerance taken from the largest first "
+          "residual of the step's solves; false: every solve starts from u_n.");
+  pl->set("search tolerance", 1e-4,
+          "Relative tolerance of the solves that only search a step's contact set (docs/THEORY.md "
+          "§6.9): each solve of the active-set loop stops at this fraction of the largest first "
+          "residual of the step's solves, and only the settled set is solved on to the relative "
+          "tolerance (and checked again there). Effective with warm re-solves and above the "
+          "relative tolerance; 0: every solve to the relative tolerance.",
+          double_at_least(0.0));
   return pl;
 }
 

@@ -26,6 +26,8 @@ Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Eli
   if (contact_) {
     loop_ = std::make_unique<contact::ActiveSetLoop>(*contact_, elim_, fixed_);
     newton_.set_hooks(loop_->hooks());
+    const auto& o = newton_.options();
+    loop_->set_search(o.warm_resolves && o.search_rtol > 0 && o.search_rtol > o.rtol);
     if (contact_->closes_gaps()) {
       restoration_ = std::make_unique<EnergyRestoration>(newton_.disc(), fixed_);
       closure_p_ = Teuchos::rcp(new Vector(newton_.disc().owned_map()));
@@ -53,17 +55,22 @@ void Stepper::start_iterate(double h, bool no_contact, Vector& u1) const {
 // One step of size h with the active-set loop of docs/THEORY.md §6; false if Newton failed.
 bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   const Vector& u0 = *s_.u;
-  double reference = 0;  // the first residual of the step's last cold start
-  auto newton = [&](bool empty, bool warm) -> bool {
+  double reference = 0;   // the largest first residual of the step's solves (§6.1-§6.2)
+  bool searched = false;  // the last solve was a search solve (§6.9)
+  auto newton = [&](bool empty, bool warm, bool search) -> bool {
     if (!warm) start_iterate(h, empty, u1);
-    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1, warm ? reference : 0.0);
-    if (!warm && !nr.residuals.empty()) reference = nr.residuals.front();
+    const double rtol = search ? newton_.options().search_rtol : 0.0;
+    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1, warm ? reference : 0.0, rtol);
+    if (!nr.residuals.empty()) reference = std::max(warm ? reference : 0.0, nr.residuals.front());
     rep.newton_iterations += nr.iterations;
+    // the accepted set's iterations: a final solve continues its search solve (§6.9)
+    last_set_iterations_ = nr.iterations + (searched && !search ? last_set_iterations_ : 0);
+    searched = search;
     rep.linear_iterations += nr.linear_iterations;
     if (!nr.converged) rep.last_failure = nr.failure;
     return nr.converged;
   };
-  if (!loop_) return newton(true, false);
+  if (!loop_) return newton(true, false, false);
   // the prediction of u_{n+1} (the reach of the contact nodes, docs/THEORY.md §8)
   u1.assign(u0);
   if (s_.last_increment && s_.last_h > 0) u1.update(h / s_.last_h, *s_.last_increment, 1.0);
@@ -71,10 +78,10 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   Teuchos::TimeMonitor tm(contact_timer());  // the loop's own work; Newton's is its own
   const bool ok = loop_->solve(
       u0, u1, s_.active,
-      [&](bool changed, bool empty, bool warm) -> const Vector* {
+      [&](bool changed, bool empty, bool warm, bool search) -> const Vector* {
         if (changed) newton_.solver().matrix_changed();  // a new P: the preconditioner is stale
         contact_timer().stop();
-        const bool converged = newton(empty, warm && newton_.options().warm_resolves);
+        const bool converged = newton(empty, warm && newton_.options().warm_resolves, search);
         contact_timer().start();
         return converged ? &newton_.last_residual() : nullptr;
       },
@@ -148,7 +155,7 @@ StepReport Stepper::advance() {
       if (!s_.last_increment) s_.last_increment = Teuchos::rcp(new Vector(u0.getMap()));
       s_.last_increment->update(1.0, u1, -1.0, u0, 0.0);
       s_.last_h = h;
-      s_.last_iterations = newton_.last().iterations;
+      s_.last_iterations = last_set_iterations_;
       s_.newton_contraction = newton_.contraction();
       s_.u->assign(u1);
       s_.t += h;

@@ -299,6 +299,7 @@ TEST(Coulomb, NewtonQuadraticInSlipSteps) {
   emc::app::Options o;
   o.input = std::string(EMC_TEST_DIR) + "/slide.xml";
   o.overrides = {"Solver/Newton/relative tolerance=1e-15",
+                 "Solver/Newton/search tolerance=0",  // whole solves (docs/THEORY.md §6.9)
                  "Solver/Newton/max iterations=40",
                  "Solver/Linear/type=klu2",
                  "Time/end=0.1",

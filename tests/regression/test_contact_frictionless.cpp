@@ -97,12 +97,13 @@ TEST(Frictionless, BlockSlidingOnPlane) {
 
 // Newton converges quadratically in a frictionless contact step with a deforming master
 // (the exact linearisation of §5, with direct linear solves): order estimates on the last
-// iterations above round-off.
+// iterations above round-off, of whole solves (no search solves, docs/THEORY.md §6.9).
 TEST(Frictionless, NewtonQuadraticWithDeformableMaster) {
   emc::app::Options o;
   o.input = std::string(EMC_TEST_DIR) + "/two_blocks.xml";
   o.overrides = {"Contact/A on B/type=frictionless", "Solver/Newton/relative tolerance=1e-15",
-                 "Solver/Newton/max iterations=40", "Solver/Linear/type=klu2"};
+                 "Solver/Newton/max iterations=40", "Solver/Linear/type=klu2",
+                 "Solver/Newton/search tolerance=0"};
   auto sim = emc::app::setup(o, Tpetra::getDefaultComm());
   double best = 0;
   int checked = 0;
@@ -127,12 +128,15 @@ TEST(Frictionless, NewtonQuadraticWithDeformableMaster) {
 // and masters of the disk behind. The outer slave's X terms carried through the chained master's
 // row of P keep Newton quadratic there: the accepted solve of every step with a chain needs at
 // most 6 iterations (to the round-off floor, 9-10 decades below the first residual), where the
-// terms left out gave linear convergence at a ratio near 0.2 (10-11 iterations).
+// terms left out gave linear convergence at a ratio near 0.2 (10-11 iterations). Whole solves
+// from u_n: no warm re-solves or search solves (docs/THEORY.md §6.1, §6.9), whose accepted
+// solve starts near its solution.
 TEST(Frictionless, NewtonFastWhereAMasterIsAnActiveSlave) {
   emc::app::Options o;
   o.input = std::string(EMC_TEST_DIR) + "/../../inputs/three_disks.xml";
-  o.overrides = {"Output/every=0", "Output/plot=false", "Output/progress=false",
-                 "Solver/Linear/type=klu2", "Time/end=0.22"};
+  o.overrides = {"Output/every=0",        "Output/plot=false",
+                 "Output/progress=false", "Solver/Linear/type=klu2",
+                 "Time/end=0.22",         "Solver/Newton/warm re-solves=false"};
   auto sim = emc::app::setup(o, Tpetra::getDefaultComm());
   int chained = 0, worst = 0;
   while (!sim->stepper->finished()) {

@@ -36,8 +36,13 @@ class ActiveSetLoop {
   /// One Newton solve of the step with the trial set applied (P rebuilt if `changed`; `empty`:
   /// no rank has an active entry). `warm`: u1 holds the last converged solve of the step, the
   /// start iterate (docs/THEORY.md §6.1-§6.2); else u1 is reset to the step's start iterate.
+  /// `search`: the solve only searches the set (docs/THEORY.md §6.9), to a looser tolerance.
   /// Returns the contactless residual at the solution, or null if Newton failed.
-  using Solve = std::function<const Vector*(bool changed, bool empty, bool warm)>;
+  using Solve = std::function<const Vector*(bool changed, bool empty, bool warm, bool search)>;
+
+  /// docs/THEORY.md §6.9: the solves search the set to a looser tolerance and the settled set
+  /// is solved to the full one and checked again (the Solve honours `search`; needs warm).
+  void set_search(bool on) { search_ = on; }
 
   /// §6: the step from u0 with the set `active` at t_n; u1 holds a prediction of u_{n+1} on
   /// entry (the reach of the contact nodes) and the solution on return. p (or null): the
@@ -48,6 +53,7 @@ class ActiveSetLoop {
  private:
   const Contact& contact_;
   ActiveConstraints constraints_;
+  bool search_ = false;
 
   void accept(Positions x0, Positions x1, const Vector& g, std::vector<Active>& trial,
               const std::vector<double>& fN, SettledSet& out, Vector* p);

@@ -16,7 +16,9 @@ class ActiveConstraints : public linalg::ConstraintHooks {
 
   /// The trial active set of the step (frictionless entries get their facet and xi updated in
   /// place). Rebuilds P when the set differs from the last one on any rank (collective);
-  /// returns true if it did. index: every rank's entries of the set (Contact::gather).
+  /// returns true if the set's entries (slave nodes, and stick or slip) changed: the Newton
+  /// matrix changed more than from iterate to iterate (an iterate-dependent law's P is rebuilt
+  /// at every iterate anyway). index: every rank's entries of the set (Contact::gather).
   bool use(std::vector<Active>* trial, ActiveIndex index);
   /// All ranks' entries of the trial set (chains).
   const ActiveIndex& index() const { return index_; }
@@ -33,6 +35,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<GO> fixed_;
   std::vector<Active>* trial_ = nullptr;
   std::vector<std::array<double, 5>> applied_;  ///< (slave, facet, xi, slip) P was built for
+  std::vector<std::array<int, 2>> members_;     ///< (slave, slip) of the last set used
   std::vector<GO> dummies_;
   std::vector<const Law*> present_;  ///< laws with an entry on some rank
   bool iterate_dependent_ = false;   ///< some present law's rows follow the iterate

@@ -2,9 +2,10 @@
 // Newton on the full residual of eq. 20, reduced by the elimination (docs/THEORY.md §1.6, §3):
 //   (P^T A P + D) dq = -P^T g,  u_{n+1} += P dq,
 // converged when ||P^T g|| <= max(rtol ||P^T g_0||, atol, 100 eps ||scale||), where scale
-// bounds the round-off of g's four terms and g_0 is the step's first start iterate (a re-solve
-// of the active-set loop started from the last solution keeps it). No step is ever accepted
-// unconverged.
+// bounds the round-off of g's four terms and g_0 is the solve's start iterate or, for a re-solve
+// of the active-set loop started from the last solution, the largest start residual of the
+// step's solves if that is larger. No step is ever accepted unconverged (a search solve of the
+// active-set loop, docs/THEORY.md §6.9, stops earlier, but the step's last solve is a full one).
 #include <Teuchos_ParameterList.hpp>
 #include <functional>
 #include <string>
@@ -22,6 +23,7 @@ struct NewtonOptions {
   bool adaptive_linear_tolerance = true;  ///< see Newton::linear_tolerance
   bool skip_last_matrix = true;           ///< no Newton matrix at an iterate predicted to converge
   bool warm_resolves = true;  ///< the active-set loop's re-solves start from the last solve
+  double search_rtol = 0;     ///< the active-set loop's search solves (0: to rtol)
 };
 NewtonOptions newton_options(const Teuchos::ParameterList& newton);
 
@@ -42,11 +44,12 @@ class Newton {
          NewtonOptions opt);
 
   /// Solves eq. 20 for u1 given (u0, V0) at t_n; u1 holds the start guess on entry.
-  /// reference > 0: the relative tolerance applies to it instead of this solve's first residual
-  /// (a re-solve of the step started from the last solution, docs/THEORY.md §6.1-§6.2), and the
-  /// start iterate is accepted if it meets that tolerance already.
+  /// reference > 0: the relative tolerance applies to the larger of it and this solve's first
+  /// residual (a re-solve of the step started from the last solution, docs/THEORY.md
+  /// §6.1-§6.2), and the start iterate is accepted if it meets that tolerance already.
+  /// rtol > 0 replaces the relative tolerance (a search solve, docs/THEORY.md §6.9).
   NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                     double reference = 0);
+                     double reference = 0, double rtol = 0);
 
   /// Constraints that change inside Newton (contact); null: only the fixed elimination.
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
@@ -64,7 +67,8 @@ class Newton {
   const NewtonOptions& options() const { return opt_; }
 
  private:
-  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1, double reference);
+  NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1, double reference,
+                       double rtol);
   double linear_tolerance(const std::vector<double>& r, double floor) const;
   /// C r_k^2 with C = r_k / r_{k-1}^2 (or the last step's); < 0 when there is no estimate.
   double predicted_next(const std::vector<double>& r) const;

@@ -96,6 +96,7 @@ class Stepper {
   State& s_;
   double dt_, end_;
   int max_cuts_, grow_after_;
+  int last_set_iterations_ = 0;  ///< Newton iterations of the accepted set (search + final)
   std::unique_ptr<contact::ActiveSetLoop> loop_;    ///< with contact pairs only
   std::unique_ptr<EnergyRestoration> restoration_;  ///< with `close gap` pairs only
   Teuchos::RCP<Vector> closure_p_;                  ///< the step's impulse direction (§7.4)
