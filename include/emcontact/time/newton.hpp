@@ -55,8 +55,9 @@ class Newton {
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
   /// The linear solver (the stepper drops its preconditioner when P changes).
   linalg::LinearSolver& solver() { return solver_; }
-  /// r_1 / r_0^2 of the last solve with two iterates: the first linear tolerance of the next
-  /// solve derives from it (part of the state: a restart must restore it to be bitwise).
+  /// r_1 / r_0^2 of the last solve from a step's start iterate with two iterates: the first
+  /// linear tolerance of the next solve derives from it (part of the state: a restart must
+  /// restore it to be bitwise).
   double contraction() const { return contraction_; }
   void set_contraction(double c) { contraction_ = c; }
   /// The result of the last solve (residual history).
