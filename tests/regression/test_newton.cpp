@@ -163,3 +163,36 @@ TEST_F(NewtonPasses, SkippingTheLastMatrixChangesNothing) {
     EXPECT_EQ(with.extra_assemblies, pass == 2 ? 1 : 0);
   }
 }
+
+// docs/THEORY.md §6.9, §1.7: a search solve (relative tolerance 1e-4) continued by a final solve
+// from its iterate (reference: the search solve's first residual) ends where one whole solve
+// ends, to the Newton tolerance; and only the solve from the start iterate sets the contraction
+// estimate C that the next step's first linear tolerance uses (the final solve's r_1 / r_0^2 is
+// not that of a first iterate).
+TEST_F(NewtonPasses, SearchThenFinalSolveReachesTheWholeSolve) {
+  emc::time::NewtonOptions opt;
+  opt.rtol = 1e-11;
+  solve_passes(opt, 1, false);
+  const auto V0 = owned_initial_velocity(disc);
+  auto linear = params->sublist("Solver").sublist("Linear");
+  linear.set("type", "gmres");
+  linear.set("tolerance", 1e-13);
+  emc::linalg::Elimination elim(disc.owned_map());
+  emc::linalg::LinearSolver solver(linear, comm);
+  emc::time::Newton newton(disc, elim, solver, opt);
+  emc::Vector u0(disc.owned_map()), u1(disc.owned_map());
+  const auto search = newton.solve(u0, *V0, 0.05, u1, 0.0, 1e-4);
+  ASSERT_TRUE(search.converged) << search.failure;
+  const double C = newton.contraction();
+  const auto final = newton.solve(u0, *V0, 0.05, u1, search.residuals.front());
+  ASSERT_TRUE(final.converged) << final.failure;
+  std::printf("search %d + final %d iterations against %d whole\n", search.iterations,
+              final.iterations, runs[0].iterations);
+  EXPECT_LT(search.iterations, runs[0].iterations);  // it stopped early
+  EXPECT_LE(final.residuals.back(), 1e-11 * search.residuals.front());
+  emc::Vector diff(u1, Teuchos::Copy);
+  diff.update(-1.0, solutions[0], 1.0);
+  EXPECT_LT(diff.normInf(), 1e-8 * solutions[0].normInf());
+  EXPECT_GT(C, 0.0);
+  EXPECT_EQ(newton.contraction(), C);  // the final solve left C alone
+}
