@@ -154,6 +154,7 @@ output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::s
                            const std::string& dir, Writers& w) {
   load_checkpoint(sim, dofs, file);
   sim.solver->invalidate();
+  sim.elim->forget_graph();
   std::vector<output::MonitorRow> rows;
   std::string error;
   const auto& comm = *sim.disc->comm();
@@ -238,6 +239,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
   sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,
                                                        opt.input);
+  sim->elim->keep_graph(sim->solver->direct());
   // CG needs a symmetric matrix: the mid-point tangent without frictionless contact is; the
   // energy-momentum tangent (docs/THEORY.md §1.4) and the frictionless P^T A Pt + X (§5.4) are not
   bool frictionless = false;
@@ -324,6 +326,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         save_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5");
         kept = state.step;
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
+        sim->elim->forget_graph();
       }
       progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);
       if (time::stop_requested(*comm)) stop_on_sigterm();  // every rank at the same step

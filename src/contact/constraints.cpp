@@ -47,11 +47,13 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
   members_ = std::move(members);
   if (iterate_dependent_) applied_.clear();  // P is rebuilt at every iterate anyway
   if (contact_.global_count(key == applied_ ? 0 : 1) == 0) return false;
-  LawRows out;
-  const LawState s = state({});
-  for (const Law* law : present_) law->rows(s, *trial, nullptr, nullptr, out);
-  dummies_ = out.dummies;
-  elim_.set_constraints(fixed_, out.rows, {});
+  if (!iterate_dependent_) {  // an iterate-dependent P is set by before_reduce at each iterate
+    LawRows out;
+    const LawState s = state({});
+    for (const Law* law : present_) law->rows(s, *trial, nullptr, nullptr, out);
+    dummies_ = out.dummies;
+    elim_.set_constraints(fixed_, out.rows, {});
+  }
   applied_ = std::move(key);
   return !iterate_dependent_ || new_members;
 }

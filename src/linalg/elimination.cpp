@@ -13,7 +13,8 @@ Elimination::Elimination(RCP<const Map> owned) : owned_(owned) {
   set_constraints({}, {}, {});
 }
 
-// docs/THEORY.md §3.1: P is the identity except in constrained rows (fixed: empty rows).
+// docs/THEORY.md §3.1: P is the identity except in constrained rows (fixed: empty rows). Its
+// graph is built here; the special rows' values are written by fill_P.
 RCP<Matrix> Elimination::build_P(const std::vector<PRow>& rows) const {
   std::map<GO, const PRow*> special;
   for (const auto& r : rows) special[r.row] = &r;
@@ -21,40 +22,70 @@ RCP<Matrix> Elimination::build_P(const std::vector<PRow>& rows) const {
   for (GO g : fixed_) is_fixed[owned_->getLocalElement(g)] = 1;
   std::size_t width = 1;
   for (const auto& r : rows) width = std::max(width, r.cols.size());
-  auto P = rcp(new Matrix(owned_, width));
-  const double one = 1.0;
+  auto graph = rcp(new Graph(owned_, width));
   for (LO l = 0; l < static_cast<LO>(owned_->getNodeNumElements()); ++l) {
     const GO g = owned_->getGlobalElement(l);
     auto it = special.find(g);
     if (it != special.end()) {
       if (!it->second->cols.empty())
-        P->insertGlobalValues(g, Teuchos::ArrayView<const GO>(it->second->cols),
-                              Teuchos::ArrayView<const double>(it->second->weights));
+        graph->insertGlobalIndices(g, Teuchos::ArrayView<const GO>(it->second->cols));
     } else if (!is_fixed[l]) {
-      P->insertGlobalValues(g, Teuchos::ArrayView<const GO>(&g, 1),
-                            Teuchos::ArrayView<const double>(&one, 1));
+      graph->insertGlobalIndices(g, Teuchos::ArrayView<const GO>(&g, 1));
     }
   }
-  P->fillComplete(owned_, owned_);
+  graph->fillComplete(owned_, owned_);
+  auto P = rcp(new Matrix(graph));
+  P->setAllToScalar(1.0);  // the plain rows' e_i; fill_P writes the special rows
   return P;
 }
 
+// The special rows' values (a column may come twice, through two chains: the weights add).
+void Elimination::fill_P(const std::vector<PRow>& rows) {
+  P_->resumeFill();
+  std::vector<double> zeros;
+  for (const auto& r : rows) {
+    if (r.cols.empty()) continue;
+    zeros.assign(r.cols.size(), 0.0);
+    const Teuchos::ArrayView<const GO> cols(r.cols);
+    P_->replaceGlobalValues(r.row, cols, Teuchos::ArrayView<const double>(zeros));
+    P_->sumIntoGlobalValues(r.row, cols, Teuchos::ArrayView<const double>(r.weights));
+  }
+  P_->fillComplete(owned_, owned_);
+}
+
+// P's graph and the keep vector are rebuilt only when the constrained dofs or a special row's
+// columns change; while they stay (Newton iterates of one frictionless set), only the special
+// rows' values are rewritten.
 void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vector<PRow>& rows,
                                   const std::vector<std::pair<GO, double>>& dummy_diag) {
-  int local = fixed.empty() && rows.empty() ? 0 : 1, global = 0;
-  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 1, &local, &global);
-  identity_ = global == 0;
-  int mask = 1, all_mask = 1;  // every special row empty: P is a 0/1 diagonal
-  for (const auto& r : rows) mask &= r.cols.empty() ? 1 : 0;
-  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MIN, 1, &mask, &all_mask);
-  masked_ = all_mask == 1;
-  fixed_ = fixed;
+  std::vector<GO> key = fixed;
+  key.push_back(-1);
+  int mask = 1;  // every special row empty: P is a 0/1 diagonal
+  for (const auto& r : rows) {
+    key.push_back(r.row);
+    key.push_back(static_cast<GO>(r.cols.size()));
+    key.insert(key.end(), r.cols.begin(), r.cols.end());
+    mask &= r.cols.empty() ? 1 : 0;
+  }
+  // max: something constrained, a pattern changed; min: every special row empty
+  int local[3] = {fixed.empty() && rows.empty() ? 0 : 1, P_.is_null() || key != p_key_ ? 1 : 0,
+                  -mask};
+  int global[3];
+  Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 3, local, global);
+  identity_ = global[0] == 0;
+  masked_ = global[2] == -1;
   rows_ = rows;
-  P_ = build_P(rows);
-  std::vector<GO> constrained = fixed_;
-  for (const auto& r : rows_) constrained.push_back(r.row);
-  keep_ = keep_vector(owned_, constrained);
-  if (masked_) masked_reduction_.set_keep(keep_);
+  if (global[1] != 0) {
+    fixed_ = fixed;
+    P_ = build_P(rows);
+    std::vector<GO> constrained = fixed_;
+    for (const auto& r : rows_) constrained.push_back(r.row);
+    keep_ = keep_vector(owned_, constrained);
+    if (masked_) masked_reduction_.set_keep(keep_);
+    p_key_ = std::move(key);
+    ++p_builds_;
+  }
+  fill_P(rows);
   pt_rows_.clear();
   X_.clear();
   linearised_ = false;

@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
+#include <iterator>
 #include <map>
 
 #include "emcontact/error.hpp"
@@ -136,10 +137,6 @@ void StructuredReduction::build(const Matrix& A) {
   };
 
   const auto lA = A.getLocalMatrixHost();
-  struct Contribution {
-    int a, ip, it;
-    GO k, l;
-  };
   std::vector<Contribution> c;
   std::vector<std::pair<GO, int>> prow, ptrow;  // (column, weight index)
   for (LO i = 0; i < n_own; ++i) {
@@ -167,51 +164,79 @@ void StructuredReduction::build(const Matrix& A) {
     }
   }
 
+  // docs/THEORY.md §3.6: with keep_graph, the graph holds A's whole pattern and the listed
+  // entries of earlier sets too, and is kept while it has every entry this pattern needs
+  const bool same_a = !B_.is_null() && graph_for_ == std::make_pair(key_.col_map, key_.nnz);
+  int attempt = keep_graph_ && same_a ? 1 : 0, all_attempt = 0, found = 0;
+  Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &attempt, &all_attempt);
+  std::vector<int> cpos, xdpos;
+  if (all_attempt) {
+    int mine = find_positions(A, plain_row, plain_col, c, cpos, xdpos) ? 1 : 0;
+    Teuchos::reduceAll(*comm_, Teuchos::REDUCE_MIN, 1, &mine, &found);
+  }
+  if (!found) {
+    new_graph(A, plain_row, plain_col, c, all_attempt != 0);
+    if (!find_positions(A, plain_row, plain_col, c, cpos, xdpos))
+      throw Error("internal: reduced-matrix entry missing from its graph");
+  }
+  std::vector<int> ca(c.size()), cp(c.size()), ct(c.size());
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    ca[k] = c[k].a;
+    cp[k] = c[k].ip;
+    ct[k] = c[k].it;
+  }
+  c_a_ = to_view("emc::structured::a", ca);
+  c_ip_ = to_view("emc::structured::ip", cp);
+  c_it_ = to_view("emc::structured::it", ct);
+  c_pos_ = to_view("emc::structured::pos", cpos);
+  segments(cpos, c_order_, c_seg_);
+  xd_pos_ = to_view("emc::structured::xd_pos", xdpos);  // X's entries, then D's
+  segments(xdpos, xd_order_, xd_seg_);
+}
+
+// The graph for the listed entries of this pattern (the contributions', X's and D's) and, with
+// keep_graph on the same A, those of the current graph while the union is at most twice them
+// (it bounds the explicit zeros a direct solver factors).
+void StructuredReduction::new_graph(const Matrix& A, const std::vector<char>& plain_row,
+                                    const std::vector<char>& plain_col,
+                                    const std::vector<Contribution>& c, bool merge) {
+  const auto& rows_map = *A.getRowMap();
+  std::vector<std::pair<GO, GO>> needed;
+  needed.reserve(c.size() + x_rows_.size() + d_rows_.size());
+  for (const auto& x : c) needed.emplace_back(x.k, x.l);
+  for (std::size_t k = 0; k < x_rows_.size(); ++k) needed.emplace_back(x_rows_[k], x_cols_[k]);
+  for (GO g : d_rows_) needed.emplace_back(g, g);
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  std::vector<std::pair<GO, GO>> merged;
+  if (merge)
+    std::set_union(graph_extra_.begin(), graph_extra_.end(), needed.begin(), needed.end(),
+                   std::back_inserter(merged));
+  if (merge && merged.size() <= 2 * needed.size())
+    graph_extra_ = std::move(merged);
+  else
+    graph_extra_ = std::move(needed);
+  graph_for_ = {key_.col_map, key_.nnz};
   // rows: mine, then the rows owned elsewhere that I add to (FECrsGraph wants mine first)
-  std::vector<GO> remote;
-  for (const auto& x : c)
-    if (!rows_map.isNodeGlobalElement(x.k)) remote.push_back(x.k);
-  for (GO g : x_rows_)
-    if (!rows_map.isNodeGlobalElement(g)) remote.push_back(g);
-  std::sort(remote.begin(), remote.end());
-  remote.erase(std::unique(remote.begin(), remote.end()), remote.end());
-  auto row_of = [&](GO g) {
-    const LO l = rows_map.getLocalElement(g);
-    return l != Teuchos::OrdinalTraits<LO>::invalid()
-               ? l
-               : n_own + static_cast<LO>(std::lower_bound(remote.begin(), remote.end(), g) -
-                                         remote.begin());
-  };
-  // the listed entries by row; each row of the graph: its plain entries, then these
-  std::vector<std::pair<LO, GO>> extra;
-  extra.reserve(c.size() + x_rows_.size() + d_rows_.size());
-  for (const auto& x : c) extra.emplace_back(row_of(x.k), x.l);
-  for (std::size_t k = 0; k < x_rows_.size(); ++k)
-    extra.emplace_back(row_of(x_rows_[k]), x_cols_[k]);
-  for (GO g : d_rows_) extra.emplace_back(row_of(g), g);
+  graph_remote_.clear();
+  for (const auto& [k, l] : graph_extra_)
+    if (!rows_map.isNodeGlobalElement(k)) graph_remote_.push_back(k);
+  graph_remote_.erase(std::unique(graph_remote_.begin(), graph_remote_.end()), graph_remote_.end());
+  std::vector<std::pair<LO, GO>> extra;  // by graph row: plain entries (or A's row), then these
+  extra.reserve(graph_extra_.size());
+  for (const auto& [k, l] : graph_extra_) extra.emplace_back(row_of(rows_map, k), l);
   std::sort(extra.begin(), extra.end());
-  extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-  B_ = rcp(new FEMatrix(make_graph(A, plain_row, plain_col, remote, extra)));
-  find_positions(A, plain_row, plain_col, row_of, [&](auto&& pos) {
-    std::vector<int> ca(c.size()), cp(c.size()), ct(c.size()), cpos(c.size()), xp, dp;
-    for (std::size_t k = 0; k < c.size(); ++k) {
-      ca[k] = c[k].a;
-      cp[k] = c[k].ip;
-      ct[k] = c[k].it;
-      cpos[k] = pos(c[k].k, c[k].l);
-    }
-    for (std::size_t k = 0; k < x_rows_.size(); ++k) xp.push_back(pos(x_rows_[k], x_cols_[k]));
-    for (GO g : d_rows_) dp.push_back(pos(g, g));
-    c_a_ = to_view("emc::structured::a", ca);
-    c_ip_ = to_view("emc::structured::ip", cp);
-    c_it_ = to_view("emc::structured::it", ct);
-    c_pos_ = to_view("emc::structured::pos", cpos);
-    segments(cpos, c_order_, c_seg_);
-    std::vector<int> xdp = xp;  // X's entries, then D's: the order they are added in
-    xdp.insert(xdp.end(), dp.begin(), dp.end());
-    xd_pos_ = to_view("emc::structured::xd_pos", xdp);
-    segments(xdp, xd_order_, xd_seg_);
-  });
+  B_ = rcp(new FEMatrix(make_graph(A, plain_row, plain_col, graph_remote_, extra)));
+  ++graph_builds_;
+}
+
+// A row of the graph: mine by local index, then the rows owned elsewhere (graph_remote_).
+LO StructuredReduction::row_of(const Map& rows_map, GO g) const {
+  const LO l = rows_map.getLocalElement(g);
+  if (l != Teuchos::OrdinalTraits<LO>::invalid()) return l;
+  const auto it = std::lower_bound(graph_remote_.begin(), graph_remote_.end(), g);
+  if (it == graph_remote_.end() || *it != g) return -1;
+  return static_cast<LO>(rows_map.getNodeNumElements() + (it - graph_remote_.begin()));
 }
 
 // The FE graph: my rows (plain entries of A's row, then the listed ones) and the rows owned
@@ -234,11 +259,11 @@ RCP<FEGraph> StructuredReduction::make_graph(const Matrix& A, const std::vector<
   for (std::size_t r = 0; r < ids.size(); ++r) first[r + 1] += first[r];
   std::vector<std::vector<GO>> cols(1);
   auto& row = cols[0];
-  auto fill_row = [&](LO r) {  // plain entries and listed ones, without duplicates
+  auto fill_row = [&](LO r) {  // plain entries (or A's row) and listed ones, no duplicates
     row.clear();
-    if (r < n_own && plain_row[r])
+    if (r < n_own && (plain_row[r] || keep_graph_))
       for (auto e = lA.graph.row_map(r); e < lA.graph.row_map(r + 1); ++e)
-        if (plain_col[lA.graph.entries(e)])
+        if (plain_col[lA.graph.entries(e)] || keep_graph_)
           row.push_back(col_map.getGlobalElement(lA.graph.entries(e)));
     const std::size_t n_plain = row.size();
     for (std::size_t k = first[r]; k < first[r + 1]; ++k) row.push_back(extra[k].second);
@@ -264,52 +289,83 @@ RCP<FEGraph> StructuredReduction::make_graph(const Matrix& A, const std::vector<
 }
 
 // Positions in the values of B's owned+shared local matrix: of every plain entry of A (a
-// column marker per row), and, through `use(pos)`, of any (row, column) listed.
-template <class RowOf, class Use>
-void StructuredReduction::find_positions(const Matrix& A, const std::vector<char>& plain_row,
-                                         const std::vector<char>& plain_col, const RowOf& row_of,
-                                         const Use& use) {
+// column marker per row), of the contributions, and of X's then D's entries. False if one is
+// not in B's graph. Collective (B's assembly).
+bool StructuredReduction::find_positions(const Matrix& A, const std::vector<char>& plain_row,
+                                         const std::vector<char>& plain_col,
+                                         const std::vector<Contribution>& c, std::vector<int>& cpos,
+                                         std::vector<int>& xdpos) {
   B_->beginAssembly();
   const auto lA = A.getLocalMatrixHost();
   const auto lB = B_->getLocalMatrixHost();
   const auto& bcol = *B_->getColMap();
   const auto& acol = *A.getColMap();
+  const auto& rows_map = *A.getRowMap();
   std::vector<LO> a2b(acol.getNodeNumElements());  // A's local columns in B's column map
   for (std::size_t j = 0; j < a2b.size(); ++j)
     a2b[j] = bcol.getLocalElement(acol.getGlobalElement(j));
+  bool ok = true;
   std::vector<int> plain_pos(lA.nnz(), -1), marker(bcol.getNodeNumElements(), -1);
   for (std::size_t i = 0; i < plain_row.size(); ++i) {
     if (!plain_row[i]) continue;
     for (auto p = lB.graph.row_map(i); p < lB.graph.row_map(i + 1); ++p)
       marker[lB.graph.entries(p)] = static_cast<int>(p);
     for (auto e = lA.graph.row_map(i); e < lA.graph.row_map(i + 1); ++e)
-      if (plain_col[lA.graph.entries(e)]) plain_pos[e] = marker[a2b[lA.graph.entries(e)]];
+      if (plain_col[lA.graph.entries(e)]) {
+        const LO j = a2b[lA.graph.entries(e)];
+        const int q = j >= 0 ? marker[j] : -1;  // a stale mark is of an earlier row
+        ok &= q >= static_cast<int>(lB.graph.row_map(i)) && lB.graph.entries(q) == j;
+        plain_pos[e] = q;
+      }
   }
   plain_pos_ = to_view("emc::structured::plain_pos", plain_pos);
-  use([&](GO k, GO l) {
-    const LO r = row_of(k), cl = bcol.getLocalElement(l);
+  auto pos = [&](GO k, GO l) {
+    const LO r = row_of(rows_map, k), cl = bcol.getLocalElement(l);
+    if (r < 0 || cl == Teuchos::OrdinalTraits<LO>::invalid()) return -1;
     const auto* b = lB.graph.entries.data() + lB.graph.row_map(r);
     const auto* e = lB.graph.entries.data() + lB.graph.row_map(r + 1);
     const auto* it = std::lower_bound(b, e, cl);
-    if (it == e || *it != cl) throw Error("internal: reduced-matrix entry missing from its graph");
-    return static_cast<int>(it - lB.graph.entries.data());
-  });
+    return it == e || *it != cl ? -1 : static_cast<int>(it - lB.graph.entries.data());
+  };
+  cpos.resize(c.size());
+  for (std::size_t k = 0; ok && k < c.size(); ++k) ok = (cpos[k] = pos(c[k].k, c[k].l)) >= 0;
+  xdpos.clear();
+  for (std::size_t k = 0; ok && k < x_rows_.size(); ++k)
+    ok = xdpos.emplace_back(pos(x_rows_[k], x_cols_[k])) >= 0;
+  for (std::size_t k = 0; ok && k < d_rows_.size(); ++k)
+    ok = xdpos.emplace_back(pos(d_rows_[k], d_rows_[k])) >= 0;
   B_->endAssembly();
+  return ok;
 }
 
 // Groups the contributions by the value they add to: order lists them by position (stably: in
 // their own order within a position), seg the start of each position's run. A kernel over the
 // runs then adds each position's contributions in a fixed order, with no two threads on one
 // value: the same bits on any number of threads (docs/THEORY.md §9).
+void StructuredReduction::keep_graph(bool on) {
+  keep_graph_ = on;
+  forget();
+}
+
+void StructuredReduction::forget() {
+  B_ = Teuchos::null;
+  built_for_ = Key{};
+  graph_extra_.clear();
+  graph_remote_.clear();
+}
+
 void StructuredReduction::segments(const std::vector<int>& pos,
                                    Kokkos::View<int*, ExecSpace>& order,
                                    Kokkos::View<int*, ExecSpace>& seg) {
-  std::vector<int> o(pos.size()), starts;
-  for (std::size_t k = 0; k < o.size(); ++k) o[k] = static_cast<int>(k);
-  std::stable_sort(o.begin(), o.end(), [&](int a, int b) { return pos[a] < pos[b]; });
-  for (std::size_t j = 0; j < o.size(); ++j)
-    if (j == 0 || pos[o[j]] != pos[o[j - 1]]) starts.push_back(static_cast<int>(j));
-  starts.push_back(static_cast<int>(o.size()));
+  const int n_values = pos.empty() ? 0 : *std::max_element(pos.begin(), pos.end()) + 1;
+  std::vector<int> first(n_values + 1, 0), o(pos.size()), starts;
+  for (int p : pos) ++first[p + 1];  // a counting sort: stable, linear in the values
+  for (int v = 0; v < n_values; ++v) {
+    if (first[v + 1] > 0) starts.push_back(first[v]);
+    first[v + 1] += first[v];
+  }
+  starts.push_back(static_cast<int>(pos.size()));
+  for (std::size_t k = 0; k < pos.size(); ++k) o[first[pos[k]]++] = static_cast<int>(k);
   order = to_view("emc::structured::order", o);
   seg = to_view("emc::structured::seg", starts);
 }

@@ -39,7 +39,8 @@ class Elimination {
  public:
   explicit Elimination(Teuchos::RCP<const Map> owned);
 
-  /// Rebuilds P and D (call when the constrained set changes, not every Newton iteration).
+  /// Sets P and D. P's graph is rebuilt only when the constrained dofs or the columns of a
+  /// special row change; otherwise the special rows' values are rewritten in place.
   /// `fixed`: owned dofs with prescribed zero increment; `rows`: owned dofs whose increment is
   /// a combination of other dofs; `dummy_diag`: (owned dof, D value) for dummy unknowns.
   void set_constraints(const std::vector<GO>& fixed, const std::vector<PRow>& rows,
@@ -61,6 +62,15 @@ class Elimination {
   Teuchos::RCP<const Matrix> P() const { return P_; }
   /// Times the structured path (P^T A Pt + X + D) built its pattern: once per active set.
   int pattern_builds() const { return structured_reduction_.builds(); }
+  /// Keep the reduced matrix's graph across active sets while it has their entries (for a
+  /// direct solver: its analysis is kept; docs/THEORY.md §3.6).
+  void keep_graph(bool on) { structured_reduction_.keep_graph(on); }
+  /// Drops the kept graph (at a checkpoint, so that a restart continues bit for bit).
+  void forget_graph() { structured_reduction_.forget(); }
+  /// Times the reduced matrix's graph was built, for tests.
+  int graph_builds() const { return structured_reduction_.graph_builds(); }
+  /// Times P's graph was built (set_constraints with a new pattern), for tests.
+  int p_builds() const { return p_builds_; }
 
   /// P^T A Pt + X + D (Pt = P and X = 0 unless set_linearisation was called). Off the masked
   /// path, the returned matrix is refilled by the next call while the pattern holds.
@@ -80,7 +90,10 @@ class Elimination {
   std::vector<PRow> left_rows_;       ///< the left factor's special rows (P's unless Pl is set)
   std::vector<Entry> X_;
   bool linearised_ = false;  ///< set_linearisation was called (on some rank)
+  std::vector<GO> p_key_;    ///< the fixed dofs and the special rows' columns P's graph has
+  int p_builds_ = 0;
   Teuchos::RCP<Matrix> build_P(const std::vector<PRow>& rows) const;
+  void fill_P(const std::vector<PRow>& rows);
   bool identity_ = true;
   bool masked_ = false;  ///< P is diagonal (0/1) on every rank: MaskedReduction, no products
   mutable MaskedReduction masked_reduction_;

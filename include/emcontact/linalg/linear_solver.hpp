@@ -85,6 +85,8 @@ class LinearSolver {
   /// solve, or with `multigrid reuse = refresh` the multigrid hierarchy's coarse operators and
   /// smoothers recomputed for it (its aggregates and prolongators kept).
   void matrix_changed();
+  /// True for a direct solver (klu2, mumps): it keeps its analysis while the graph is the same.
+  bool direct() const { return type_ == SolverType::klu2 || type_ == SolverType::mumps; }
   /// True for a solver that assumes a symmetric matrix (Solver/Linear/type = cg).
   bool assumes_symmetric() const { return type_ == SolverType::cg; }
   /// True when the preconditioner is built from node positions (multigrid's rigid-body modes).

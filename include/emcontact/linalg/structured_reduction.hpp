@@ -48,6 +48,16 @@ class StructuredReduction {
   Teuchos::RCP<Matrix> apply(const Matrix& A);
   /// Times the pattern was (re)built, for tests.
   int builds() const { return builds_; }
+  /// Times the result's graph was built (fewer than builds() with keep_graph).
+  int graph_builds() const { return graph_builds_; }
+  /// Keep the result's graph across patterns (docs/THEORY.md §3.6): it then holds A's whole
+  /// pattern and the listed entries of earlier patterns, and a new pattern whose entries it
+  /// has keeps the same matrix object (a direct solver keeps its analysis). Off: the graph
+  /// holds exactly the entries of the current pattern.
+  void keep_graph(bool on);
+  /// Drops the graph: the next apply builds it from the current pattern alone (a checkpoint:
+  /// a restart has no earlier patterns).
+  void forget();
 
  private:
   struct Key {  // what the pattern depends on
@@ -75,8 +85,20 @@ class StructuredReduction {
   Kokkos::View<int*, ExecSpace> c_order_, c_seg_, xd_order_, xd_seg_;
   Kokkos::View<int*, ExecSpace> plain_pos_;  ///< per entry of A: its position, or -1
   Teuchos::RCP<FEMatrix> B_;
-  int builds_ = 0;
+  int builds_ = 0, graph_builds_ = 0;
+  bool keep_graph_ = false;
+  std::vector<std::pair<GO, GO>> graph_extra_;  ///< B's listed entries (row, column), sorted
+  std::vector<GO> graph_remote_;                ///< B's rows owned elsewhere, sorted
+  std::pair<const void*, std::size_t> graph_for_{nullptr, 0};  ///< A's structure B was built on
+  struct Contribution {  // value(k, l) += p_w(ip) * A(a) * pt_w(it)
+    int a, ip, it;
+    GO k, l;
+  };
   void build(const Matrix& A);
+  void new_graph(const Matrix& A, const std::vector<char>& plain_row,
+                 const std::vector<char>& plain_col, const std::vector<Contribution>& c,
+                 bool merge);
+  LO row_of(const Map& rows_map, GO g) const;
   static void segments(const std::vector<int>& pos, Kokkos::View<int*, ExecSpace>& order,
                        Kokkos::View<int*, ExecSpace>& seg);
   std::vector<char> plain_columns(const Matrix& A, std::vector<char>& plain_row) const;
@@ -84,9 +106,9 @@ class StructuredReduction {
                                    const std::vector<char>& plain_col,
                                    const std::vector<GO>& remote,
                                    const std::vector<std::pair<LO, GO>>& extra) const;
-  template <class RowOf, class Use>
-  void find_positions(const Matrix& A, const std::vector<char>& plain_row,
-                      const std::vector<char>& plain_col, const RowOf& row_of, const Use& use);
+  bool find_positions(const Matrix& A, const std::vector<char>& plain_row,
+                      const std::vector<char>& plain_col, const std::vector<Contribution>& c,
+                      std::vector<int>& cpos, std::vector<int>& xdpos);
 };
 
 }  // namespace emc::linalg

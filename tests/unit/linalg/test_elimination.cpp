@@ -5,6 +5,7 @@
 
 #include <Tpetra_Core.hpp>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -280,20 +281,27 @@ TEST(Elimination, MaskedPathIsExact) {
 
 namespace {
 
-/// The dense P^T A Pt + X + D for slave rows (P and Pt), fixed dofs (D = 1) and dummies (D = beta).
-std::vector<std::vector<double>> dense_reduced(const std::vector<std::vector<double>>& Ad,
-                                               const std::vector<GO>& fixed,
-                                               const std::vector<linalg::PRow>& p_rows,
-                                               const std::vector<linalg::PRow>& pt_rows,
-                                               const std::vector<linalg::Entry>& X, double beta) {
-  std::vector<std::vector<double>> P(kN, std::vector<double>(kN, 0.0)),
-      R(kN, std::vector<double>(kN, 0.0));
+/// The dense P for slave rows and fixed dofs.
+std::vector<std::vector<double>> dense_P(const std::vector<GO>& fixed,
+                                         const std::vector<linalg::PRow>& p_rows) {
+  std::vector<std::vector<double>> P(kN, std::vector<double>(kN, 0.0));
   for (int i = 0; i < kN; ++i) P[i][i] = 1;
   for (GO g : fixed) P[g][g] = 0;
   for (const auto& r : p_rows) {
     P[r.row][r.row] = 0;
     for (std::size_t k = 0; k < r.cols.size(); ++k) P[r.row][r.cols[k]] += r.weights[k];
   }
+  return P;
+}
+
+/// The dense P^T A Pt + X + D for slave rows (P and Pt), fixed dofs (D = 1) and dummies (D = beta).
+std::vector<std::vector<double>> dense_reduced(const std::vector<std::vector<double>>& Ad,
+                                               const std::vector<GO>& fixed,
+                                               const std::vector<linalg::PRow>& p_rows,
+                                               const std::vector<linalg::PRow>& pt_rows,
+                                               const std::vector<linalg::Entry>& X, double beta) {
+  const auto P = dense_P(fixed, p_rows);
+  std::vector<std::vector<double>> R(kN, std::vector<double>(kN, 0.0));
   auto Pt = P;
   for (const auto& r : pt_rows) {
     std::fill(Pt[r.row].begin(), Pt[r.row].end(), 0.0);
@@ -315,28 +323,45 @@ std::vector<std::vector<double>> dense_reduced(const std::vector<std::vector<dou
 // weights and new values of A and X on the same pattern refill the same matrix and still equal
 // the dense reference; a slave that moves to another facet (new columns) rebuilds the pattern.
 // Rows of P, Pt and X reach dofs owned by the other rank at np2.
-TEST(Elimination, StructuredPathReusesItsPattern) {
+namespace {
+
+/// Passes of one slave (node 5) on a facet of masters `facets[pass]`, with A, the weights and X
+/// changing from pass to pass; the reduced matrix is checked against the dense reference and
+/// P dq against the dense P at every pass, then `check(pass, elim, Ar)` runs.
+template <class Check>
+void structured_passes(bool keep_graph, const std::vector<std::array<int, 3>>& facets,
+                       const Check& check) {
   auto comm = Tpetra::getDefaultComm();
   auto map = Teuchos::rcp(new Map(kN, 0, comm));
+  linalg::Elimination elim(map);
+  elim.keep_graph(keep_graph);
   auto Ad = dense_matrix();
   const std::vector<GO> fixed_all = {0, 1, 2};
   const double beta = 4.2;
-  linalg::Elimination elim(map);
-  const int masters[3][3] = {{1, 2, 4}, {1, 2, 4}, {3, 2, 1}};  // pass 2: another facet
-  int builds = 0;
-  for (int pass = 0; pass < 3; ++pass) {
-    if (pass > 0)
+  const auto A = distributed(Ad, map);  // one graph, as the Newton matrix's
+  for (int pass = 0; pass < static_cast<int>(facets.size()); ++pass) {
+    const auto& masters = facets[pass];
+    if (pass > 0) {
       for (auto& row : Ad)
         for (double& v : row)
           if (v != 0) v *= 1.0 + 0.1 * pass;
-    const auto A = distributed(Ad, map);
+      A->resumeFill();
+      for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+        const GO i = map->getGlobalElement(l);
+        for (GO j = 0; j < kN; ++j)
+          if (Ad[i][j] != 0)
+            A->replaceGlobalValues(i, Teuchos::ArrayView<const GO>(&j, 1),
+                                   Teuchos::ArrayView<const double>(&Ad[i][j], 1));
+      }
+      A->fillComplete();
+    }
     std::vector<linalg::PRow> p_all, pt_all;
     for (int c = 0; c < 3; ++c) {  // slave node 5 on the facet, tangent dofs 15, 16 kept
       linalg::PRow p{15 + c, {}, {}}, pt{15 + c, {}, {}};
       for (int k = 0; k < 3; ++k) {
-        p.cols.push_back(3 * masters[pass][k] + c);
+        p.cols.push_back(3 * masters[k] + c);
         p.weights.push_back(0.2 + 0.1 * k + 0.01 * pass);
-        pt.cols.push_back(3 * masters[pass][k] + (c + 1) % 3);
+        pt.cols.push_back(3 * masters[k] + (c + 1) % 3);
         pt.weights.push_back(-0.3 + 0.2 * k - 0.02 * pass);
       }
       for (int q = 0; q < 2; ++q) {
@@ -348,9 +373,8 @@ TEST(Elimination, StructuredPathReusesItsPattern) {
       p_all.push_back(p);
       pt_all.push_back(pt);
     }
-    const std::vector<linalg::Entry> X_all = {{15, 3 * masters[pass][0], 0.5 + pass},
-                                              {3 * masters[pass][1], 16, -0.7},
-                                              {12, 12, 0.1 * pass}};
+    const std::vector<linalg::Entry> X_all = {
+        {15, 3 * masters[0], 0.5 + pass}, {3 * masters[1], 16, -0.7}, {12, 12, 0.1 * pass}};
     std::vector<GO> fixed;
     std::vector<linalg::PRow> p, pt;
     std::vector<std::pair<GO, double>> dummies;
@@ -371,7 +395,48 @@ TEST(Elimination, StructuredPathReusesItsPattern) {
     double norm = 0;
     const double err = max_error(*Ar, R, *map, norm);
     EXPECT_LT(err, 1e-14 * norm) << "pass " << pass;
-    builds += pass != 1;  // pass 1: the pattern of pass 0, new weights and values
-    EXPECT_EQ(elim.pattern_builds(), builds) << "pass " << pass;
+    const auto Pd = dense_P(fixed_all, p_all);  // du = P dq
+    Vector dq(map), du(map);
+    auto dqv = dq.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (std::size_t l = 0; l < map->getNodeNumElements(); ++l)
+      dqv(l, 0) = 1.0 + 0.25 * static_cast<double>(map->getGlobalElement(l));
+    elim.expand(dq, du);
+    auto duv = du.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+      const GO i = map->getGlobalElement(l);
+      double ref = 0;
+      for (int j = 0; j < kN; ++j) ref += Pd[i][j] * (1.0 + 0.25 * j);
+      EXPECT_NEAR(duv(l, 0), ref, 1e-14 * 20) << "pass " << pass << ", dof " << i;
+    }
+    check(pass, elim, Ar);
   }
+}
+
+}  // namespace
+
+TEST(Elimination, StructuredPathReusesItsPattern) {
+  int builds = 0;
+  structured_passes(false, {{1, 2, 4}, {1, 2, 4}, {3, 2, 1}},  // pass 2: another facet
+                    [&](int pass, const linalg::Elimination& elim, const auto&) {
+                      builds += pass != 1;  // pass 1: the pattern of pass 0, new weights, values
+                      EXPECT_EQ(elim.pattern_builds(), builds) << "pass " << pass;
+                      EXPECT_EQ(elim.graph_builds(), builds) << "pass " << pass;
+                      // P's graph: the constructor's, then one per new set of columns
+                      EXPECT_EQ(elim.p_builds(), 1 + builds) << "pass " << pass;
+                    });
+}
+
+// For a direct solver (docs/THEORY.md §3.6) the reduced matrix's graph holds A's whole pattern
+// and the entries of earlier facets too: a slave back on an earlier facet keeps the same
+// matrix object (its analysis), and the values still equal the dense reference.
+TEST(Elimination, StructuredPathKeepsAGraphThatHasTheEntries) {
+  const Matrix* second = nullptr;
+  structured_passes(true, {{1, 2, 4}, {1, 2, 4}, {3, 2, 1}, {1, 2, 4}},
+                    [&](int pass, const linalg::Elimination& elim, const auto& Ar) {
+                      const int patterns[4] = {1, 1, 2, 3}, graphs[4] = {1, 1, 2, 2};
+                      EXPECT_EQ(elim.pattern_builds(), patterns[pass]) << "pass " << pass;
+                      EXPECT_EQ(elim.graph_builds(), graphs[pass]) << "pass " << pass;
+                      if (pass == 2) second = Ar.get();
+                      if (pass == 3) EXPECT_EQ(Ar.get(), second);
+                    });
 }
