@@ -239,8 +239,9 @@ LO StructuredReduction::row_of(const Map& rows_map, GO g) const {
   return static_cast<LO>(rows_map.getNodeNumElements() + (it - graph_remote_.begin()));
 }
 
-// The FE graph: my rows (plain entries of A's row, then the listed ones) and the rows owned
-// elsewhere that I add to. `extra`: sorted unique (overlap row, column).
+// The FE graph: my rows (plain entries of A's row, or with keep_graph its whole row, then the
+// listed ones) and the rows owned elsewhere that I add to. `extra`: sorted unique (overlap
+// row, column).
 RCP<FEGraph> StructuredReduction::make_graph(const Matrix& A, const std::vector<char>& plain_row,
                                              const std::vector<char>& plain_col,
                                              const std::vector<GO>& remote,
@@ -338,10 +339,7 @@ bool StructuredReduction::find_positions(const Matrix& A, const std::vector<char
   return ok;
 }
 
-// Groups the contributions by the value they add to: order lists them by position (stably: in
-// their own order within a position), seg the start of each position's run. A kernel over the
-// runs then adds each position's contributions in a fixed order, with no two threads on one
-// value: the same bits on any number of threads (docs/THEORY.md §9).
+// docs/THEORY.md §3.6: the graph kept across patterns (direct solvers), dropped at a checkpoint.
 void StructuredReduction::keep_graph(bool on) {
   keep_graph_ = on;
   forget();
@@ -354,6 +352,10 @@ void StructuredReduction::forget() {
   graph_remote_.clear();
 }
 
+// Groups the contributions by the value they add to: order lists them by position (stably: in
+// their own order within a position), seg the start of each position's run. A kernel over the
+// runs then adds each position's contributions in a fixed order, with no two threads on one
+// value: the same bits on any number of threads (docs/THEORY.md §9).
 void StructuredReduction::segments(const std::vector<int>& pos,
                                    Kokkos::View<int*, ExecSpace>& order,
                                    Kokkos::View<int*, ExecSpace>& seg) {
