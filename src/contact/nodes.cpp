@@ -89,15 +89,21 @@ std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Vector& u0,
   std::vector<double> flat;
   for (const auto& b : mine) flat.insert(flat.end(), b.begin(), b.end());
   const auto all = allgather(*disc_.comm(), flat);  // [rank][pair][6]
-  auto o0 = disc_.new_overlap_vector(), o1 = disc_.new_overlap_vector();
   const bool deformable =
       std::any_of(pairs_.begin(), pairs_.end(), [](const Pair& p) { return !p.rigid_master; });
-  if (deformable) {  // the positions of the deformable facets my elements hold
+  Teuchos::RCP<Vector> o0, o1;  // the positions of the deformable facets my elements hold
+  if (deformable) {
+    o0 = disc_.new_overlap_vector();
+    o1 = disc_.new_overlap_vector();
     disc_.to_overlap(u0, *o0);
     disc_.to_overlap(u1, *o1);
   }
-  auto v0 = o0->getLocalViewHost(Tpetra::Access::ReadOnly);
-  auto v1 = o1->getLocalViewHost(Tpetra::Access::ReadOnly);
+  using HostView = decltype(u0.getLocalViewHost(Tpetra::Access::ReadOnly));
+  HostView v0, v1;
+  if (deformable) {
+    v0 = o0->getLocalViewHost(Tpetra::Access::ReadOnly);
+    v1 = o1->getLocalViewHost(Tpetra::Access::ReadOnly);
+  }
   const auto& overlap = *disc_.overlap_map();
   std::vector<std::vector<int>> need(np), sends(nr);
   for (int p = 0; p < np; ++p) {
@@ -126,26 +132,41 @@ std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Vector& u0,
 }
 
 // §3 chains: an active entry whose slave is one of my contact nodes adds its facet (its rows of
-// P, and for frictionless its tangents at n+1/2, enter mine).
+// P, and for frictionless its tangents at n+1/2, enter mine). My contact nodes are my slaves
+// (sorted per pair) and the nodes of the facets in reach (a sorted list that grows with them).
 void ContactNodes::close_chains(std::vector<std::vector<int>>& need,
                                 const ActiveIndex& index) const {
-  std::vector<std::set<int>> have(need.size());
-  std::set<int> nodes;
-  for (std::size_t p = 0; p < need.size(); ++p) {
-    have[p].insert(need[p].begin(), need[p].end());
-    for (int s : my_slaves_[p]) nodes.insert(s);
-    for (int f : need[p])
-      for (int a : pairs_[p].facets[f]) nodes.insert(a);
+  for (auto& v : need) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
   }
+  if (index.by_slave.empty()) return;
+  std::vector<int> facet_nodes;
+  for (std::size_t p = 0; p < need.size(); ++p)
+    for (int f : need[p])
+      for (int a : pairs_[p].facets[f]) facet_nodes.push_back(a);
+  std::sort(facet_nodes.begin(), facet_nodes.end());
+  facet_nodes.erase(std::unique(facet_nodes.begin(), facet_nodes.end()), facet_nodes.end());
+  const auto is_node = [&](int s) {
+    if (std::binary_search(facet_nodes.begin(), facet_nodes.end(), s)) return true;
+    for (const auto& mine : my_slaves_)
+      if (std::binary_search(mine.begin(), mine.end(), s)) return true;
+    return false;
+  };
+  const auto insert = [](std::vector<int>& v, int x) {
+    const auto it = std::lower_bound(v.begin(), v.end(), x);
+    if (it != v.end() && *it == x) return false;
+    v.insert(it, x);
+    return true;
+  };
   for (bool changed = true; changed;) {
     changed = false;
     for (const auto& [s, a] : index.by_slave)
-      if (nodes.count(s) && have[a.pair].insert(a.facet).second) {
-        for (int n : pairs_[a.pair].facets[a.facet]) nodes.insert(n);
+      if (is_node(s) && insert(need[a.pair], a.facet)) {
+        for (int n : pairs_[a.pair].facets[a.facet]) insert(facet_nodes, n);
         changed = true;
       }
   }
-  for (std::size_t p = 0; p < need.size(); ++p) need[p].assign(have[p].begin(), have[p].end());
 }
 
 void ContactNodes::select(const Vector& u0, const Vector& u1, const ActiveIndex& index) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <map>
 
+#include "emcontact/linalg/p_matrix.hpp"
+
 namespace emc::linalg {
 
 using Teuchos::RCP;
@@ -11,46 +13,6 @@ using Teuchos::rcp;
 
 Elimination::Elimination(RCP<const Map> owned) : owned_(owned) {
   set_constraints({}, {}, {});
-}
-
-// docs/THEORY.md §3.1: P is the identity except in constrained rows (fixed: empty rows). Its
-// graph is built here; the special rows' values are written by fill_P.
-RCP<Matrix> Elimination::build_P(const std::vector<PRow>& rows) const {
-  std::map<GO, const PRow*> special;
-  for (const auto& r : rows) special[r.row] = &r;
-  std::vector<char> is_fixed(owned_->getNodeNumElements(), 0);
-  for (GO g : fixed_) is_fixed[owned_->getLocalElement(g)] = 1;
-  std::size_t width = 1;
-  for (const auto& r : rows) width = std::max(width, r.cols.size());
-  auto graph = rcp(new Graph(owned_, width));
-  for (LO l = 0; l < static_cast<LO>(owned_->getNodeNumElements()); ++l) {
-    const GO g = owned_->getGlobalElement(l);
-    auto it = special.find(g);
-    if (it != special.end()) {
-      if (!it->second->cols.empty())
-        graph->insertGlobalIndices(g, Teuchos::ArrayView<const GO>(it->second->cols));
-    } else if (!is_fixed[l]) {
-      graph->insertGlobalIndices(g, Teuchos::ArrayView<const GO>(&g, 1));
-    }
-  }
-  graph->fillComplete(owned_, owned_);
-  auto P = rcp(new Matrix(graph));
-  P->setAllToScalar(1.0);  // the plain rows' e_i; fill_P writes the special rows
-  return P;
-}
-
-// The special rows' values (a column may come twice, through two chains: the weights add).
-void Elimination::fill_P(const std::vector<PRow>& rows) {
-  P_->resumeFill();
-  std::vector<double> zeros;
-  for (const auto& r : rows) {
-    if (r.cols.empty()) continue;
-    zeros.assign(r.cols.size(), 0.0);
-    const Teuchos::ArrayView<const GO> cols(r.cols);
-    P_->replaceGlobalValues(r.row, cols, Teuchos::ArrayView<const double>(zeros));
-    P_->sumIntoGlobalValues(r.row, cols, Teuchos::ArrayView<const double>(r.weights));
-  }
-  P_->fillComplete(owned_, owned_);
 }
 
 // P's graph and the keep vector are rebuilt only when the constrained dofs or a special row's
@@ -77,15 +39,16 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
   rows_ = rows;
   if (global[1] != 0) {
     fixed_ = fixed;
-    P_ = build_P(rows);
+    P_ = make_P(owned_, fixed_, rows);  // docs/THEORY.md §3.1, with the special rows' values
     std::vector<GO> constrained = fixed_;
     for (const auto& r : rows_) constrained.push_back(r.row);
     keep_ = keep_vector(owned_, constrained);
     if (masked_) masked_reduction_.set_keep(keep_);
     p_key_ = std::move(key);
     ++p_builds_;
+  } else {
+    write_P_rows(*P_, rows);
   }
-  fill_P(rows);
   pt_rows_.clear();
   X_.clear();
   linearised_ = false;

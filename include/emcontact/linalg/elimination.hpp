@@ -92,8 +92,6 @@ class Elimination {
   bool linearised_ = false;  ///< set_linearisation was called (on some rank)
   std::vector<GO> p_key_;    ///< the fixed dofs and the special rows' columns P's graph has
   int p_builds_ = 0;
-  Teuchos::RCP<Matrix> build_P(const std::vector<PRow>& rows) const;
-  void fill_P(const std::vector<PRow>& rows);
   bool identity_ = true;
   bool masked_ = false;  ///< P is diagonal (0/1) on every rank: MaskedReduction, no products
   mutable MaskedReduction masked_reduction_;

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "emcontact/linalg/elimination.hpp"
+#include "emcontact/linalg/p_matrix.hpp"
 
 using namespace emc;
 
@@ -439,4 +440,54 @@ TEST(Elimination, StructuredPathKeepsAGraphThatHasTheEntries) {
                       if (pass == 2) second = Ar.get();
                       if (pass == 3) EXPECT_EQ(Ar.get(), second);
                     });
+}
+
+// P made from its rows in local arrays (docs/THEORY.md §3.1): a repeated column adds its
+// weights, fixed rows are empty, a special row wins over a fixed one, columns may be owned by
+// the other rank (np2); its rows and P x equal the dense P, before and after write_P_rows
+// rewrites the special rows' weights on the same columns.
+TEST(PMatrix, MatchesTheDensePWithRepeatedAndRemoteColumns) {
+  auto comm = Tpetra::getDefaultComm();
+  auto map = Teuchos::rcp(new Map(kN, 0, comm));
+  const std::vector<GO> all_fixed = {2, 10, 16};  // 16 is also a special row below
+  const auto rows_with = [](double s) {
+    return std::vector<linalg::PRow>{{15, {0, 3, 6, 3}, {0.2 * s, 0.3, 0.4, 0.1 * s}},
+                                     {16, {1, 4, 7}, {0.5, 0.25 * s, 0.25}},
+                                     {17, {}, {}}};  // a dummy: an empty row
+  };
+  Teuchos::RCP<Matrix> P;
+  for (double s : {1.0, -2.0}) {
+    std::vector<GO> fixed;
+    std::vector<linalg::PRow> rows;
+    for (GO g : all_fixed)
+      if (map->isNodeGlobalElement(g)) fixed.push_back(g);
+    for (const auto& r : rows_with(s))
+      if (map->isNodeGlobalElement(r.row)) rows.push_back(r);
+    if (s == 1.0)
+      P = linalg::make_P(map, fixed, rows);
+    else
+      linalg::write_P_rows(*P, rows);
+    const auto Pd = dense_P(all_fixed, rows_with(s));
+    double norm = 0;
+    // the same additions in the same order as the dense P: equal to the bit
+    EXPECT_EQ(max_error(*P, Pd, *map, norm), 0.0) << "s = " << s;
+    Vector x(map), y(map);
+    {
+      auto xv = x.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (std::size_t l = 0; l < map->getNodeNumElements(); ++l)
+        xv(l, 0) = 1.0 + 0.1 * static_cast<double>(map->getGlobalElement(l));
+    }
+    P->apply(x, y);
+    double err = 0;
+    auto yv = y.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+      const GO i = map->getGlobalElement(l);
+      double ref = 0;
+      for (int j = 0; j < kN; ++j) ref += Pd[i][j] * (1.0 + 0.1 * j);
+      err = std::max(err, std::fabs(yv(l, 0) - ref));
+    }
+    double all = 0;
+    Teuchos::reduceAll(*comm, Teuchos::REDUCE_MAX, 1, &err, &all);
+    EXPECT_LT(all, 1e-14) << "s = " << s;  // sums of four products of O(1) numbers
+  }
 }
