@@ -28,6 +28,30 @@ void grow(double* box, const double x[3]) {
   }
 }
 
+/// The box of the points X(k) + u0(dof(k)) and X(k) + u1(dof(k)) over k (a kernel in a free
+/// function: device code is never in a private member).
+void sweep_box(const Kokkos::View<const double* [3], ExecSpace> X,
+               const Kokkos::View<const LO* [3], ExecSpace> dof, const Vector& u0, const Vector& u1,
+               double* box) {
+  const auto v0 = u0.getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const auto v1 = u1.getLocalViewDevice(Tpetra::Access::ReadOnly);
+  for (int c = 0; c < 3; ++c) {
+    Kokkos::MinMaxScalar<double> r;
+    Kokkos::parallel_reduce(
+        "emcontact::contact::slave_box", Kokkos::RangePolicy<ExecSpace>(0, X.extent(0)),
+        KOKKOS_LAMBDA(const int k, Kokkos::MinMaxScalar<double>& b) {
+          const double a = X(k, c) + v0(dof(k, c), 0), e = X(k, c) + v1(dof(k, c), 0);
+          b.min_val = a < b.min_val ? a : b.min_val;
+          b.min_val = e < b.min_val ? e : b.min_val;
+          b.max_val = a > b.max_val ? a : b.max_val;
+          b.max_val = e > b.max_val ? e : b.max_val;
+        },
+        Kokkos::MinMax<double>(r));
+    box[c] = r.min_val;
+    box[3 + c] = r.max_val;
+  }
+}
+
 }  // namespace
 
 ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pair>& pairs)
@@ -42,6 +66,7 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
     my_slaves_.emplace_back();
     for (int s : p.slaves)
       if (disc_.part().node_owner[s] == rank) my_slaves_.back().push_back(s);
+    slave_box_data(my_slaves_.back());
     held_.emplace_back();
     if (p.rigid_master) continue;
     for (int f = 0; f < static_cast<int>(p.facets.size()); ++f) {
@@ -51,28 +76,39 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
   }
 }
 
+// The reference positions of my slaves and their owned dofs, for slave_boxes.
+void ContactNodes::slave_box_data(const std::vector<int>& mine) {
+  const auto& m = disc_.model();
+  const auto& map = *disc_.owned_map();
+  Kokkos::View<double* [3], ExecSpace> X("emc::slave_X", mine.size());
+  Kokkos::View<LO* [3], ExecSpace> dof("emc::slave_dofs", mine.size());
+  auto Xh = Kokkos::create_mirror_view(X);
+  auto dh = Kokkos::create_mirror_view(dof);
+  for (std::size_t k = 0; k < mine.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      Xh(k, c) = m.X[3 * mine[k] + c];
+      dh(k, c) = map.getLocalElement(fem::dof_gid(mine[k], c));
+    }
+  Kokkos::deep_copy(X, Xh);
+  Kokkos::deep_copy(dof, dh);
+  slave_X_.push_back(X);
+  slave_dofs_.push_back(dof);
+}
+
 // The box of my slave nodes of each pair over the step (x at u0 and at u1), grown by the pair's
 // max penetration and mean facet size (the reach of Newton's iterates and of §5 step 2).
 std::vector<std::vector<double>> ContactNodes::slave_boxes(const Vector& u0,
                                                            const Vector& u1) const {
-  const auto& m = disc_.model();
-  const auto& map = *disc_.owned_map();
-  auto v0 = u0.getLocalViewHost(Tpetra::Access::ReadOnly);
-  auto v1 = u1.getLocalViewHost(Tpetra::Access::ReadOnly);
   std::vector<std::vector<double>> boxes;
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     std::vector<double> b = {kHuge, kHuge, kHuge, -kHuge, -kHuge, -kHuge};
-    for (int s : my_slaves_[p])
-      for (const auto* v : {&v0, &v1}) {
-        double x[3];
-        for (int c = 0; c < 3; ++c)
-          x[c] = m.X[3 * s + c] + (*v)(map.getLocalElement(fem::dof_gid(s, c)), 0);
-        grow(b.data(), x);
+    if (!my_slaves_[p].empty()) {
+      sweep_box(slave_X_[p], slave_dofs_[p], u0, u1, b.data());
+      const double reach = pairs_[p].dmax + pairs_[p].edge;
+      for (int i = 0; i < 3; ++i) {
+        b[i] -= reach;
+        b[3 + i] += reach;
       }
-    const double reach = pairs_[p].dmax + pairs_[p].edge;
-    for (int i = 0; i < 3 && !my_slaves_[p].empty(); ++i) {
-      b[i] -= reach;
-      b[3 + i] += reach;
     }
     boxes.push_back(std::move(b));
   }

@@ -97,7 +97,10 @@ class ContactNodes {
   const std::vector<Pair>& pairs_;
   std::vector<std::vector<int>> my_slaves_;
   std::vector<std::vector<int>> held_;  ///< per pair: deformable facets my overlap map holds
-  std::vector<int> gid_;                ///< contact node -> global node (deformable, then rigid)
+  /// per pair: my slaves' reference positions and owned dofs (their boxes over the step)
+  std::vector<Kokkos::View<const double* [3], ExecSpace>> slave_X_;
+  std::vector<Kokkos::View<const LO* [3], ExecSpace>> slave_dofs_;
+  std::vector<int> gid_;  ///< contact node -> global node (deformable, then rigid)
   std::unordered_map<int, int> lid_;
   int deformable_ = 0;                      ///< the first deformable_ contact nodes carry dofs
   std::vector<std::vector<int>> selected_;  ///< per pair: the facets of the last build
@@ -108,6 +111,7 @@ class ContactNodes {
   Kokkos::View<double* [3], ExecSpace> X_;  ///< reference (or rigid) positions
   mutable NodeTraffic traffic_;
 
+  void slave_box_data(const std::vector<int>& mine);
   std::vector<std::vector<double>> slave_boxes(const Vector& u0, const Vector& u1) const;
   std::vector<std::vector<int>> facets_in_reach(const Vector& u0, const Vector& u1) const;
   void close_chains(std::vector<std::vector<int>>& need, const ActiveIndex& index) const;
