@@ -23,7 +23,8 @@ void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
                     Kokkos::View<Active*, ExecSpace> hit) {
   const FacetGrid grid = grid1;  // by value: Views only
   Kokkos::parallel_for(
-      "emcontact::contact::detect", Kokkos::RangePolicy<ExecSpace>(0, ls.size()),
+      "emcontact::contact::detect",
+      Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>>(0, ls.size()),
       KOKKOS_LAMBDA(const int k) {
         const int s = ls.node(k);
         if (busy(s)) return;

@@ -5,7 +5,7 @@
 #include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
 #include <array>
-#include <set>
+#include <iterator>
 
 #include "emcontact/parallel.hpp"
 
@@ -14,6 +14,11 @@ namespace emc::contact {
 namespace {
 
 constexpr double kHuge = 1e300;
+
+void sort_unique(std::vector<int>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
 
 bool boxes_meet(const double* a, const double* b) {
   for (int i = 0; i < 3; ++i)
@@ -67,6 +72,12 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
     for (int s : p.slaves)
       if (disc_.part().node_owner[s] == rank) my_slaves_.back().push_back(s);
     slave_box_data(my_slaves_.back());
+    for (int s : my_slaves_.back()) {  // the slave and its slave-surface neighbours (its normal)
+      slave_side_.push_back(s);
+      const auto k = std::lower_bound(p.slaves.begin(), p.slaves.end(), s) - p.slaves.begin();
+      for (int t = p.tri_start[k]; t < p.tri_start[k + 1]; ++t)
+        for (int n : p.slave_facets[p.slave_tris[t]]) slave_side_.push_back(n);
+    }
     held_.emplace_back();
     if (p.rigid_master) continue;
     for (int f = 0; f < static_cast<int>(p.facets.size()); ++f) {
@@ -74,6 +85,7 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
       if (holds(t[0]) && holds(t[1]) && holds(t[2])) held_.back().push_back(f);
     }
   }
+  sort_unique(slave_side_);
 }
 
 // The reference positions of my slaves and their owned dofs, for slave_boxes.
@@ -172,17 +184,13 @@ std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Vector& u0,
 // (sorted per pair) and the nodes of the facets in reach (a sorted list that grows with them).
 void ContactNodes::close_chains(std::vector<std::vector<int>>& need,
                                 const ActiveIndex& index) const {
-  for (auto& v : need) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  }
+  for (auto& v : need) sort_unique(v);
   if (index.by_slave.empty()) return;
   std::vector<int> facet_nodes;
   for (std::size_t p = 0; p < need.size(); ++p)
     for (int f : need[p])
       for (int a : pairs_[p].facets[f]) facet_nodes.push_back(a);
-  std::sort(facet_nodes.begin(), facet_nodes.end());
-  facet_nodes.erase(std::unique(facet_nodes.begin(), facet_nodes.end()), facet_nodes.end());
+  sort_unique(facet_nodes);
   const auto is_node = [&](int s) {
     if (std::binary_search(facet_nodes.begin(), facet_nodes.end(), s)) return true;
     for (const auto& mine : my_slaves_)
@@ -219,25 +227,23 @@ void ContactNodes::select(const Vector& u0, const Vector& u1, const ActiveIndex&
   selected_ = std::move(need);
 }
 
+// The contact nodes: my slaves with their slave-surface neighbours, and the nodes of the
+// facets in reach, in ascending global id (so the deformable ones, below num_nodes, first).
 void ContactNodes::build(const std::vector<std::vector<int>>& need) {
   const auto& m = disc_.model();
-  std::set<int> deformable, rigid;
-  auto add = [&](int n) { (n < m.num_nodes() ? deformable : rigid).insert(n); };
-  for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    const Pair& pr = pairs_[p];
-    for (int s : my_slaves_[p]) {  // the slave and its slave-surface neighbours (its normal)
-      add(s);
-      const auto k = std::lower_bound(pr.slaves.begin(), pr.slaves.end(), s) - pr.slaves.begin();
-      for (int t = pr.tri_start[k]; t < pr.tri_start[k + 1]; ++t)
-        for (int n : pr.slave_facets[pr.slave_tris[t]]) add(n);
-    }
+  std::vector<int> facet_nodes;
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
     for (int f : need[p])
-      for (int n : pr.facets[f]) add(n);
-  }
-  gid_.assign(deformable.begin(), deformable.end());
-  deformable_ = static_cast<int>(gid_.size());
-  gid_.insert(gid_.end(), rigid.begin(), rigid.end());
+      for (int n : pairs_[p].facets[f]) facet_nodes.push_back(n);
+  sort_unique(facet_nodes);
+  gid_.clear();
+  gid_.reserve(slave_side_.size() + facet_nodes.size());
+  std::set_union(slave_side_.begin(), slave_side_.end(), facet_nodes.begin(), facet_nodes.end(),
+                 std::back_inserter(gid_));
+  deformable_ =
+      static_cast<int>(std::lower_bound(gid_.begin(), gid_.end(), m.num_nodes()) - gid_.begin());
   lid_.clear();
+  lid_.reserve(gid_.size());
   for (int l = 0; l < size(); ++l) lid_[gid_[l]] = l;
   std::vector<GO> dofs;
   for (int l = 0; l < deformable_; ++l)

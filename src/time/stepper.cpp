@@ -79,8 +79,8 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   const bool ok = loop_->solve(
       u0, u1, s_.active,
       [&](bool changed, bool empty, bool warm, bool search) -> const Vector* {
+        contact_timer().stop();  // dropping a stale preconditioner is the linear solver's time
         if (changed) newton_.solver().matrix_changed();  // a new P: the preconditioner is stale
-        contact_timer().stop();
         const bool converged = newton(empty, warm && newton_.options().warm_resolves, search);
         contact_timer().start();
         return converged ? &newton_.last_residual() : nullptr;

@@ -97,6 +97,7 @@ class ContactNodes {
   const std::vector<Pair>& pairs_;
   std::vector<std::vector<int>> my_slaves_;
   std::vector<std::vector<int>> held_;  ///< per pair: deformable facets my overlap map holds
+  std::vector<int> slave_side_;         ///< my slaves and their slave-surface neighbours, ascending
   /// per pair: my slaves' reference positions and owned dofs (their boxes over the step)
   std::vector<Kokkos::View<const double* [3], ExecSpace>> slave_X_;
   std::vector<Kokkos::View<const LO* [3], ExecSpace>> slave_dofs_;
