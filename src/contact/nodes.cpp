@@ -20,6 +20,13 @@ void sort_unique(std::vector<int>& v) {
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
+/// f(facet) for each slave-surface facet around slave node s of pair p (its normal's facets).
+template <class F>
+void for_each_slave_tri(const Pair& p, int s, F f) {
+  const auto k = std::lower_bound(p.slaves.begin(), p.slaves.end(), s) - p.slaves.begin();
+  for (int t = p.tri_start[k]; t < p.tri_start[k + 1]; ++t) f(p.slave_facets[p.slave_tris[t]]);
+}
+
 bool boxes_meet(const double* a, const double* b) {
   for (int i = 0; i < 3; ++i)
     if (a[i] > b[3 + i] || b[i] > a[3 + i]) return false;
@@ -74,9 +81,8 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
     slave_box_data(my_slaves_.back());
     for (int s : my_slaves_.back()) {  // the slave and its slave-surface neighbours (its normal)
       slave_side_.push_back(s);
-      const auto k = std::lower_bound(p.slaves.begin(), p.slaves.end(), s) - p.slaves.begin();
-      for (int t = p.tri_start[k]; t < p.tri_start[k + 1]; ++t)
-        for (int n : p.slave_facets[p.slave_tris[t]]) slave_side_.push_back(n);
+      for_each_slave_tri(
+          p, s, [&](const auto& g) { slave_side_.insert(slave_side_.end(), g.begin(), g.end()); });
     }
     held_.emplace_back();
     if (p.rigid_master) continue;
@@ -291,12 +297,9 @@ void ContactNodes::build_slaves(std::size_t p) {
   for (std::size_t k = 0; k < mine.size(); ++k) {
     nh(k) = lid_.at(mine[k]);
     sh(k) = static_cast<int>(tris.size());
-    const auto j =
-        std::lower_bound(pr.slaves.begin(), pr.slaves.end(), mine[k]) - pr.slaves.begin();
-    for (int t = pr.tri_start[j]; t < pr.tri_start[j + 1]; ++t) {
-      const auto& g = pr.slave_facets[pr.slave_tris[t]];
+    for_each_slave_tri(pr, mine[k], [&](const auto& g) {
       tris.push_back({lid_.at(g[0]), lid_.at(g[1]), lid_.at(g[2])});
-    }
+    });
   }
   sh(mine.size()) = static_cast<int>(tris.size());
   ls.tri = Kokkos::View<int* [3], ExecSpace>("emc::local_slave_tris", tris.size());

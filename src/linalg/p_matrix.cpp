@@ -196,16 +196,24 @@ void write_P_rows(Matrix& P, const std::vector<PRow>& rows) {
   const auto start = s.start;
   const auto col = s.col;
   const auto weight = s.weight;
-  Kokkos::parallel_for(
+  int missing = 0;  // entries whose column the row does not hold (a caller's error)
+  Kokkos::parallel_reduce(
       "emcontact::linalg::P_write_rows", Kokkos::RangePolicy<ExecSpace>(0, lrow.extent(0)),
-      KOKKOS_LAMBDA(const int k) {
+      KOKKOS_LAMBDA(const int k, int& miss) {
         const LO i = lrow(k);
         const auto b = A.graph.row_map(i), e = A.graph.row_map(i + 1);
         for (auto p = b; p < e; ++p) A.values(p) = 0.0;
-        for (int j = start(k); j < start(k + 1); ++j)  // a repeated column adds its weights
-          for (auto p = b; p < e; ++p)
-            if (A.graph.entries(p) == col(j)) A.values(p) += weight(j);
-      });
+        for (int j = start(k); j < start(k + 1); ++j) {  // a repeated column adds its weights
+          auto p = b;
+          while (p < e && A.graph.entries(p) != col(j)) ++p;
+          if (p < e)
+            A.values(p) += weight(j);
+          else
+            ++miss;
+        }
+      },
+      missing);
+  if (missing > 0) throw Error("internal: a special row of P has a column its row does not hold");
 }
 
 }  // namespace emc::linalg
