@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
           s.steps ? s.stepping_seconds / s.steps : 0.0,
           s.steps ? double(s.newton_iterations) / s.steps : 0.0, wall.totalElapsedTime(true),
           s.max_energy_error, s.output_dir.c_str());
-      if (s.contact_imports > 0)
+      if (s.contact_nodes > 0)
         std::printf(
             "emcontact: %lld contact nodes per rank (%lld owned by other ranks), %lld bytes "
             "received per import of their positions, %lld imports (the largest over the "

@@ -14,20 +14,22 @@ namespace emc::contact {
 namespace {
 
 /// docs/THEORY.md §6.3 for each of my slave nodes of pair p not busy: the facet it enters and
-/// xi, clamped if `clamp`, from the configuration x0 + w (x1 - x0); hit(k).slave = -1 if none
-/// (else its contact-node index, and the facet's local index).
+/// xi, clamped if `clamp`, from the configuration x0 + w (x1 - x0): found(k) = 1 and hit(k) (its
+/// contact-node index, and the facet's local index) if it enters one, else found(k) = 0.
 void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
                     const Kokkos::View<int* [3], ExecSpace> facets, Positions x0, Positions x1,
                     Kokkos::View<int*, ExecSpace> busy, const EntryRule rule, const double w,
                     const bool clamp, const double edge, const int p,
-                    Kokkos::View<Active*, ExecSpace> hit) {
+                    Kokkos::View<Active*, ExecSpace> hit, Kokkos::View<int*, ExecSpace> found) {
   const FacetGrid grid = grid1;  // by value: Views only
   Kokkos::parallel_for(
       "emcontact::contact::detect",
       Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>>(0, ls.size()),
       KOKKOS_LAMBDA(const int k) {
         const int s = ls.node(k);
-        if (busy(s)) return;
+        found(k) = 0;
+        const double y1[3] = {x1(s, 0), x1(s, 1), x1(s, 2)};
+        if (busy(s) || !grid.may_hold(y1)) return;  // no candidate: no normal needed
         double n_s[3];
         slave_normal(ls, k, x1, n_s);
         const Hit h1 = entered_facet(grid, facets, x0, x1, s, n_s, rule);
@@ -59,7 +61,36 @@ void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
         }
         a.keep_gap = kernels::facet_cpp(y0, xm0, xi0, g0) && g0 < -gap_roundoff(edge, y0);
         hit(k) = a;
+        found(k) = 1;
       });
+}
+
+/// The entries hit(k) with pos(k) = 1, in order of k, with the facet's id in the pair (a scan
+/// turns pos into their positions, -1 elsewhere: only the hits reach the host).
+Kokkos::View<Active*, ExecSpace>::HostMirror compact_hits(
+    const Kokkos::View<const Active*, ExecSpace> hit, const Kokkos::View<int*, ExecSpace> pos,
+    const Kokkos::View<const int*, ExecSpace> id) {
+  const int ns = static_cast<int>(hit.extent(0));
+  int count = 0;
+  Kokkos::parallel_scan(
+      "emcontact::contact::detect_count", Kokkos::RangePolicy<ExecSpace>(0, ns),
+      KOKKOS_LAMBDA(const int k, int& n, const bool final) {
+        const int f = pos(k);
+        if (final) pos(k) = f ? n : -1;
+        n += f;
+      },
+      count);
+  Kokkos::View<Active*, ExecSpace> found(
+      Kokkos::ViewAllocateWithoutInitializing("emc::detect_found"), count);
+  Kokkos::parallel_for(
+      "emcontact::contact::detect_compact", Kokkos::RangePolicy<ExecSpace>(0, ns),
+      KOKKOS_LAMBDA(const int k) {
+        if (pos(k) < 0) return;
+        Active a = hit(k);
+        a.facet = id(a.facet);
+        found(pos(k)) = a;
+      });
+  return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), found);
 }
 
 }  // namespace
@@ -91,20 +122,16 @@ std::vector<Active> Contact::detect_pair(int p, Positions x0, Positions x1,
   const LocalFacets& lf = nodes_.facets(p);
   const int ns = ls.size();
   if (ns == 0 || lf.size() == 0) return {};
-  const FacetGrid grid(lf.nodes, x1, pr.dmax);
-  Kokkos::View<Active*, ExecSpace> hit("emc::detect_hits", ns);
+  const FacetGrid grid = lf.grid(x1, pr.dmax);
+  Kokkos::View<Active*, ExecSpace> hit(Kokkos::ViewAllocateWithoutInitializing("emc::detect_hits"),
+                                       ns);
+  Kokkos::View<int*, ExecSpace> flag(Kokkos::ViewAllocateWithoutInitializing("emc::detect_flags"),
+                                     ns);
   entering_nodes(grid, ls, lf.nodes, x0, x1, busy, entry_rule(pr), laws_[p]->activation_weight(),
-                 laws_[p]->clamps(pr), pr.edge, p, hit);
-  auto hh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), hit);
-  auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);
-  std::vector<Active> found;
-  for (int k = 0; k < ns; ++k) {
-    Active a = hh(k);
-    if (a.slave < 0) continue;
-    a.slave = nodes_.global(a.slave);
-    a.facet = ids(a.facet);
-    found.push_back(a);
-  }
+                 laws_[p]->clamps(pr), pr.edge, p, hit, flag);
+  const auto hh = compact_hits(hit, flag, lf.id);
+  std::vector<Active> found(hh.data(), hh.data() + hh.extent(0));
+  for (auto& a : found) a.slave = nodes_.global(a.slave);
   return found;
 }
 

@@ -26,6 +26,12 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   std::vector<double> fN;
   const Vector* g = nullptr;
   Positions x0, x1;
+  int x0_nodes = -1;  // the contact nodes x0 holds: u0 is the step's, x0 changes with them only
+  const auto at_u0 = [&] {
+    if (contact_.nodes().builds() == x0_nodes) return;
+    x0 = contact_.positions(u0);
+    x0_nodes = contact_.nodes().builds();
+  };
   bool warm = false;      // §6.1-§6.2: a re-solve starts from the last solution
   bool search = search_;  // §6.9: search the set, then solve it to the full tolerance
   for (;;) {
@@ -33,6 +39,8 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     // last solution) and of the trial set's chains
     ActiveIndex index = contact_.gather(trial);
     contact_.select(u0, u1, index);
+    at_u0();
+    constraints_.set_start_positions(x0);
     const bool empty = contact_.global_count(static_cast<int>(trial.size())) == 0;
     bool changed;
     {
@@ -47,7 +55,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       // they stick, and the step is solved again
       u1.assign(u0);
       contact_.select(u0, u1, constraints_.index());
-      x0 = contact_.positions(u0);
+      at_u0();
       const LawState s{contact_, constraints_.index(), x0, x0, {}};
       int back = 0;
       for (const Law* law : contact_.laws()) back += law->after_failure(s, trial);
@@ -56,7 +64,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       continue;
     }
     contact_.select(u0, u1, constraints_.index());  // the exact sweep of the solution
-    x0 = contact_.positions(u0);
+    at_u0();
     x1 = contact_.positions(u1);
     auto fresh = contact_.detect(x0, x1, trial);
     fN = contact_.normal_forces(*g, x0, x1, trial);

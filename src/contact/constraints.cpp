@@ -60,9 +60,8 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
 
 // §5: the start iterate is projected (update steps 2-3), so that it satisfies (a) and (b);
 // docs/THEORY.md §7.2: closing full-stick slaves start on their master point.
-void ActiveConstraints::start(const Vector& u0, Vector& u1) {
-  if (present_.empty()) return;
-  x0_ = contact_.positions(u0);
+void ActiveConstraints::start(const Vector&, Vector& u1) {
+  if (present_.empty()) return;  // x0_: set_start_positions
   const LawState s = state({});
   for (const Law* law : present_) law->start(s, *trial_, u1);
   if (iterate_dependent_) index_ = contact_.gather(*trial_);  // facets and xi moved

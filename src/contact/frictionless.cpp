@@ -202,7 +202,7 @@ void switch_facets(const LawState& s, std::vector<Active>& entries, Refs refs, P
       current.push_back(lf.find(entries[k].facet));
     }
     Kokkos::View<int*, ExecSpace> next("emc::next_facet", ks.size());
-    frictionless_switch(FacetGrid(lf.nodes, xh, pr.dmax), nodes.slaves(p), lf.nodes, refs,
+    frictionless_switch(lf.grid(xh, pr.dmax), nodes.slaves(p), lf.nodes, refs,
                         to_view("emc::leaving", ks), to_view("emc::slave_k", slave_k),
                         to_view("emc::current", current), s.x0, x1, xh, entry_rule(pr), xs1, xi,
                         outside, next);

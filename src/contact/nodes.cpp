@@ -40,28 +40,77 @@ void grow(double* box, const double x[3]) {
   }
 }
 
-/// The box of the points X(k) + u0(dof(k)) and X(k) + u1(dof(k)) over k (a kernel in a free
-/// function: device code is never in a private member).
+/// The box of the points X(k) + u0(dof(k)) and X(k) + u1(dof(k)) over k: one reduction of
+/// the six bounds (a functor: device code is never in a private member).
+struct SweepBox {
+  struct value_type {
+    double lo[3], hi[3];
+  };
+  Kokkos::View<const double* [3], ExecSpace> X;
+  Kokkos::View<const LO* [3], ExecSpace> dof;
+  Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> v0, v1;
+
+  KOKKOS_INLINE_FUNCTION void operator()(const int k, value_type& b) const {
+    for (int c = 0; c < 3; ++c) {
+      const double a = X(k, c) + v0(dof(k, c), 0), e = X(k, c) + v1(dof(k, c), 0);
+      b.lo[c] = a < b.lo[c] ? a : b.lo[c];
+      b.lo[c] = e < b.lo[c] ? e : b.lo[c];
+      b.hi[c] = a > b.hi[c] ? a : b.hi[c];
+      b.hi[c] = e > b.hi[c] ? e : b.hi[c];
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void init(value_type& b) const {
+    for (int c = 0; c < 3; ++c) {
+      b.lo[c] = kHuge;
+      b.hi[c] = -kHuge;
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void join(volatile value_type& a, const volatile value_type& b) const {
+    for (int c = 0; c < 3; ++c) {
+      a.lo[c] = b.lo[c] < a.lo[c] ? b.lo[c] : a.lo[c];
+      a.hi[c] = b.hi[c] > a.hi[c] ? b.hi[c] : a.hi[c];
+    }
+  }
+};
+
 void sweep_box(const Kokkos::View<const double* [3], ExecSpace> X,
                const Kokkos::View<const LO* [3], ExecSpace> dof, const Vector& u0, const Vector& u1,
                double* box) {
-  const auto v0 = u0.getLocalViewDevice(Tpetra::Access::ReadOnly);
-  const auto v1 = u1.getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const SweepBox f{X, dof, u0.getLocalViewDevice(Tpetra::Access::ReadOnly),
+                   u1.getLocalViewDevice(Tpetra::Access::ReadOnly)};
+  SweepBox::value_type b;
+  Kokkos::parallel_reduce("emcontact::contact::slave_box",
+                          Kokkos::RangePolicy<ExecSpace>(0, X.extent(0)), f, b);
   for (int c = 0; c < 3; ++c) {
-    Kokkos::MinMaxScalar<double> r;
-    Kokkos::parallel_reduce(
-        "emcontact::contact::slave_box", Kokkos::RangePolicy<ExecSpace>(0, X.extent(0)),
-        KOKKOS_LAMBDA(const int k, Kokkos::MinMaxScalar<double>& b) {
-          const double a = X(k, c) + v0(dof(k, c), 0), e = X(k, c) + v1(dof(k, c), 0);
-          b.min_val = a < b.min_val ? a : b.min_val;
-          b.min_val = e < b.min_val ? e : b.min_val;
-          b.max_val = a > b.max_val ? a : b.max_val;
-          b.max_val = e > b.max_val ? e : b.max_val;
-        },
-        Kokkos::MinMax<double>(r));
-    box[c] = r.min_val;
-    box[3 + c] = r.max_val;
+    box[c] = b.lo[c];
+    box[3 + c] = b.hi[c];
   }
+}
+
+/// out(k) = map(in(k)).
+void gather_ids(const Kokkos::View<const int*, ExecSpace> map,
+                const Kokkos::View<const int*, ExecSpace> in,
+                const Kokkos::View<int*, ExecSpace> out) {
+  Kokkos::parallel_for(
+      "emcontact::contact::to_local", Kokkos::RangePolicy<ExecSpace>(0, in.extent(0)),
+      KOKKOS_LAMBDA(const int k) { out(k) = map(in(k)); });
+}
+
+/// x(l) = X(l) + u(l) over the contact nodes l: u from the owned vector v (src >= 0) or the
+/// imported one r (src = -1 - its row), zero for the first rigid node nd and after.
+void contact_positions(const Kokkos::View<const double* [3], ExecSpace> X,
+                       const Kokkos::View<const LO* [3], ExecSpace> src, const int nd,
+                       const Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> v,
+                       const Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> r,
+                       Positions x) {
+  Kokkos::parallel_for(
+      "emcontact::contact::positions", Kokkos::RangePolicy<ExecSpace>(0, X.extent(0)),
+      KOKKOS_LAMBDA(const int l) {
+        for (int c = 0; c < 3; ++c) {
+          const LO k = l < nd ? src(l, c) : 0;
+          x(l, c) = X(l, c) + (l >= nd ? 0.0 : k >= 0 ? v(k, 0) : r(-1 - k, 0));
+        }
+      });
 }
 
 }  // namespace
@@ -92,6 +141,39 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
     }
   }
   sort_unique(slave_side_);
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    slave_sides_.push_back(slave_tris(pairs_[p], my_slaves_[p], slave_side_));
+}
+
+// My slaves of pair p and the slave-surface triangles around each, in indices into `side`
+// (ascending, holding them all).
+LocalSlaves ContactNodes::slave_tris(const Pair& p, const std::vector<int>& mine,
+                                     const std::vector<int>& side) {
+  const auto at = [&](int n) {
+    return static_cast<int>(std::lower_bound(side.begin(), side.end(), n) - side.begin());
+  };
+  LocalSlaves g;
+  g.node = Kokkos::View<int*, ExecSpace>("emc::my_slaves", mine.size());
+  g.start = Kokkos::View<int*, ExecSpace>("emc::local_slave_start", mine.size() + 1);
+  auto nh = Kokkos::create_mirror_view(g.node);
+  auto sh = Kokkos::create_mirror_view(g.start);
+  std::vector<std::array<int, 3>> tris;
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    nh(k) = at(mine[k]);
+    sh(k) = static_cast<int>(tris.size());
+    for_each_slave_tri(p, mine[k], [&](const auto& t) {
+      tris.push_back({at(t[0]), at(t[1]), at(t[2])});
+    });
+  }
+  sh(mine.size()) = static_cast<int>(tris.size());
+  g.tri = Kokkos::View<int* [3], ExecSpace>("emc::my_slave_tris", tris.size());
+  auto th = Kokkos::create_mirror_view(g.tri);
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (int a = 0; a < 3; ++a) th(t, a) = tris[t][a];
+  Kokkos::deep_copy(g.node, nh);
+  Kokkos::deep_copy(g.start, sh);
+  Kokkos::deep_copy(g.tri, th);
+  return g;
 }
 
 // The reference positions of my slaves and their owned dofs, for slave_boxes.
@@ -248,22 +330,32 @@ void ContactNodes::build(const std::vector<std::vector<int>>& need) {
                  std::back_inserter(gid_));
   deformable_ =
       static_cast<int>(std::lower_bound(gid_.begin(), gid_.end(), m.num_nodes()) - gid_.begin());
-  lid_.clear();
-  lid_.reserve(gid_.size());
-  for (int l = 0; l < size(); ++l) lid_[gid_[l]] = l;
-  std::vector<GO> dofs;
-  for (int l = 0; l < deformable_; ++l)
-    for (int c = 0; c < 3; ++c) dofs.push_back(fem::dof_gid(gid_[l], c));
-  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-  map_ = Teuchos::rcp(new Map(invalid, dofs.data(), dofs.size(), 0, disc_.comm()));
-  import_ = Teuchos::rcp(new Import(disc_.owned_map(), map_));
+  // a dof of mine is read from the owned vector; only the others are imported (src_ < 0)
+  const auto& owned = *disc_.owned_map();
+  std::vector<GO> remote;
   X_ = Kokkos::View<double* [3], ExecSpace>("emc::contact_X", size());
+  src_ = Kokkos::View<LO* [3], ExecSpace>("emc::contact_src", size());
   auto Xh = Kokkos::create_mirror_view(X_);
+  auto sh = Kokkos::create_mirror_view(src_);
   for (int l = 0; l < size(); ++l)
-    for (int c = 0; c < 3; ++c)
-      Xh(l, c) =
-          l < deformable_ ? m.X[3 * gid_[l] + c] : m.rigid_X[3 * (gid_[l] - m.num_nodes()) + c];
+    for (int c = 0; c < 3; ++c) {
+      if (l >= deformable_) {
+        Xh(l, c) = m.rigid_X[3 * (gid_[l] - m.num_nodes()) + c];
+        continue;
+      }
+      Xh(l, c) = m.X[3 * gid_[l] + c];
+      const GO dof = fem::dof_gid(gid_[l], c);
+      sh(l, c) = owned.getLocalElement(dof);
+      if (sh(l, c) != Tpetra::Details::OrdinalTraits<LO>::invalid()) continue;
+      sh(l, c) = -1 - static_cast<LO>(remote.size());
+      remote.push_back(dof);
+    }
   Kokkos::deep_copy(X_, Xh);
+  Kokkos::deep_copy(src_, sh);
+  const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  map_ = Teuchos::rcp(new Map(invalid, remote.data(), remote.size(), 0, disc_.comm()));
+  import_ = Teuchos::rcp(new Import(disc_.owned_map(), map_));
+  imports_ = map_->getGlobalNumElements() > 0;
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
     LocalFacets& lf = facets_[p];
     const int nf = static_cast<int>(need[p].size());
@@ -275,40 +367,42 @@ void ContactNodes::build(const std::vector<std::vector<int>>& need) {
     for (int k = 0; k < nf; ++k) {
       ih(k) = need[p][k];
       lf.index[need[p][k]] = k;
-      for (int a = 0; a < 3; ++a) nh(k, a) = lid_.at(pairs_[p].facets[need[p][k]][a]);
+      for (int a = 0; a < 3; ++a) nh(k, a) = local(pairs_[p].facets[need[p][k]][a]);
     }
     Kokkos::deep_copy(lf.nodes, nh);
     Kokkos::deep_copy(lf.id, ih);
+    lf.rigid_grid.reset();
+    if (pairs_[p].rigid_master)
+      lf.rigid_grid = std::make_shared<const FacetGrid>(lf.nodes, X_, pairs_[p].dmax);
   }
-  for (std::size_t p = 0; p < pairs_.size(); ++p) build_slaves(p);
+  // slave_side_ is a subset of gid_, both ascending: one merge walk numbers it
+  Kokkos::View<int*, ExecSpace> side_local(
+      Kokkos::ViewAllocateWithoutInitializing("emc::side_local"), slave_side_.size());
+  auto slh = Kokkos::create_mirror_view(side_local);
+  for (std::size_t i = 0, l = 0; i < slave_side_.size(); ++i) {
+    while (gid_[l] < slave_side_[i]) ++l;
+    slh(i) = static_cast<int>(l);
+  }
+  Kokkos::deep_copy(side_local, slh);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) build_slaves(p, side_local);
+  ++builds_;
   traffic_.nodes = size();
-  traffic_.remote = static_cast<int>(import_->getNumRemoteIDs() / 3);
+  traffic_.remote = static_cast<int>(remote.size() / 3);
 }
 
-void ContactNodes::build_slaves(std::size_t p) {
-  const Pair& pr = pairs_[p];
-  const auto& mine = my_slaves_[p];
+// My slaves and their triangles in contact-node indices, through side_local (slave_side_ index
+// -> contact-node index).
+void ContactNodes::build_slaves(std::size_t p, Kokkos::View<const int*, ExecSpace> side_local) {
+  const LocalSlaves& g = slave_sides_[p];
   LocalSlaves& ls = slaves_[p];
-  ls.node = Kokkos::View<int*, ExecSpace>("emc::local_slaves", mine.size());
-  ls.start = Kokkos::View<int*, ExecSpace>("emc::local_slave_start", mine.size() + 1);
-  auto nh = Kokkos::create_mirror_view(ls.node);
-  auto sh = Kokkos::create_mirror_view(ls.start);
-  std::vector<std::array<int, 3>> tris;
-  for (std::size_t k = 0; k < mine.size(); ++k) {
-    nh(k) = lid_.at(mine[k]);
-    sh(k) = static_cast<int>(tris.size());
-    for_each_slave_tri(pr, mine[k], [&](const auto& g) {
-      tris.push_back({lid_.at(g[0]), lid_.at(g[1]), lid_.at(g[2])});
-    });
-  }
-  sh(mine.size()) = static_cast<int>(tris.size());
-  ls.tri = Kokkos::View<int* [3], ExecSpace>("emc::local_slave_tris", tris.size());
-  auto th = Kokkos::create_mirror_view(ls.tri);
-  for (std::size_t t = 0; t < tris.size(); ++t)
-    for (int a = 0; a < 3; ++a) th(t, a) = tris[t][a];
-  Kokkos::deep_copy(ls.node, nh);
-  Kokkos::deep_copy(ls.start, sh);
-  Kokkos::deep_copy(ls.tri, th);
+  ls.start = g.start;  // the same triangles around each slave
+  ls.node = Kokkos::View<int*, ExecSpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::local_slaves"), g.node.extent(0));
+  ls.tri = Kokkos::View<int* [3], ExecSpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::local_slave_tris"), g.tri.extent(0));
+  gather_ids(side_local, g.node, ls.node);
+  gather_ids(side_local, Kokkos::View<const int*, ExecSpace>(g.tri.data(), 3 * g.tri.extent(0)),
+             Kokkos::View<int*, ExecSpace>(ls.tri.data(), 3 * ls.tri.extent(0)));
 }
 
 Positions ContactNodes::new_positions(const char* label) const {
@@ -316,18 +410,14 @@ Positions ContactNodes::new_positions(const char* label) const {
 }
 
 void ContactNodes::positions(const Vector& u, Positions x) const {
-  Vector um(map_);
-  um.doImport(u, *import_, Tpetra::INSERT);
-  ++traffic_.imports;
-  traffic_.bytes_imported += static_cast<long long>(import_->getNumRemoteIDs()) * sizeof(double);
-  auto v = um.getLocalViewDevice(Tpetra::Access::ReadOnly);
-  const auto X = X_;
-  const int nd = deformable_;
-  Kokkos::parallel_for(
-      "emcontact::contact::positions", Kokkos::RangePolicy<ExecSpace>(0, size()),
-      KOKKOS_LAMBDA(const int l) {
-        for (int c = 0; c < 3; ++c) x(l, c) = X(l, c) + (l < nd ? v(3 * l + c, 0) : 0.0);
-      });
+  Vector um(map_);  // the remote dofs (none on one rank)
+  if (imports_) {   // collective: some rank has remote contact nodes
+    um.doImport(u, *import_, Tpetra::INSERT);
+    ++traffic_.imports;
+    traffic_.bytes_imported += static_cast<long long>(map_->getNodeNumElements()) * sizeof(double);
+  }
+  contact_positions(X_, src_, deformable_, u.getLocalViewDevice(Tpetra::Access::ReadOnly),
+                    um.getLocalViewDevice(Tpetra::Access::ReadOnly), x);
 }
 
 Positions::HostMirror ContactNodes::host_positions(const Vector& u) const {

@@ -11,6 +11,36 @@ namespace emc::linalg {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
+namespace {
+
+/// v(lids[k]) = values[k] (distinct local rows), on the vector's device.
+void write_entries(Vector& v, const std::vector<LO>& lids, const std::vector<double>& values) {
+  if (lids.empty()) return;
+  Kokkos::View<LO*, ExecSpace> l(Kokkos::ViewAllocateWithoutInitializing("emc::entry_rows"),
+                                 lids.size());
+  Kokkos::View<double*, ExecSpace> x(Kokkos::ViewAllocateWithoutInitializing("emc::entry_values"),
+                                     values.size());
+  Kokkos::deep_copy(l, Kokkos::View<const LO*, Kokkos::HostSpace>(lids.data(), lids.size()));
+  Kokkos::deep_copy(x,
+                    Kokkos::View<const double*, Kokkos::HostSpace>(values.data(), values.size()));
+  auto d = v.getLocalViewDevice(Tpetra::Access::ReadWrite);
+  Kokkos::parallel_for(
+      "emcontact::linalg::write_entries", Kokkos::RangePolicy<ExecSpace>(0, l.extent(0)),
+      KOKKOS_LAMBDA(const int k) { d(l(k), 0) = x(k); });
+}
+
+/// y = P x = P^T x for P = diag(keep) (0/1): x_i where keep_i != 0, else 0.
+void apply_mask(const Vector& keep, const Vector& x, Vector& y) {
+  const auto k = keep.getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const auto xv = x.getLocalViewDevice(Tpetra::Access::ReadOnly);
+  const auto yv = y.getLocalViewDevice(Tpetra::Access::OverwriteAll);
+  Kokkos::parallel_for(
+      "emcontact::linalg::mask", Kokkos::RangePolicy<ExecSpace>(0, k.extent(0)),
+      KOKKOS_LAMBDA(const int i) { yv(i, 0) = k(i, 0) != 0 ? xv(i, 0) : 0.0; });
+}
+
+}  // namespace
+
 Elimination::Elimination(RCP<const Map> owned) : owned_(owned) {
   set_constraints({}, {}, {});
 }
@@ -30,8 +60,7 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
     mask &= r.cols.empty() ? 1 : 0;
   }
   // max: something constrained, a pattern changed; min: every special row empty
-  int local[3] = {fixed.empty() && rows.empty() ? 0 : 1, P_.is_null() || key != p_key_ ? 1 : 0,
-                  -mask};
+  int local[3] = {fixed.empty() && rows.empty() ? 0 : 1, !built_ || key != p_key_ ? 1 : 0, -mask};
   int global[3];
   Teuchos::reduceAll(*owned_->getComm(), Teuchos::REDUCE_MAX, 3, local, global);
   identity_ = global[0] == 0;
@@ -39,14 +68,16 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
   rows_ = rows;
   if (global[1] != 0) {
     fixed_ = fixed;
-    P_ = make_P(owned_, fixed_, rows);  // docs/THEORY.md §3.1, with the special rows' values
+    // docs/THEORY.md §3.1, with the special rows' values; a 0/1 diagonal P is the keep vector
+    P_ = masked_ ? Teuchos::null : make_P(owned_, fixed_, rows);
     std::vector<GO> constrained = fixed_;
     for (const auto& r : rows_) constrained.push_back(r.row);
     keep_ = keep_vector(owned_, constrained);
     if (masked_) masked_reduction_.set_keep(keep_);
     p_key_ = std::move(key);
+    built_ = true;
     ++p_builds_;
-  } else {
+  } else if (!masked_) {
     write_P_rows(*P_, rows);
   }
   pt_rows_.clear();
@@ -78,12 +109,21 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
   for (GO g : fixed_) diag[g] = 1.0;
   for (const auto& [g, v] : dummy_diag) diag[g] = v;
   diag_.assign(diag.begin(), diag.end());
-  if (masked_) {
-    auto d = rcp(new Vector(owned_));
-    auto dv = d->getLocalViewHost(Tpetra::Access::ReadWrite);
-    for (const auto& [g, v] : diag) dv(owned_->getLocalElement(g), 0) = v;
-    masked_reduction_.set_diagonal(d);
+  if (!masked_) return;
+  // D's vector is kept: only the entries of the last call are cleared and the new ones written
+  if (d_.is_null()) d_ = rcp(new Vector(owned_));
+  std::vector<LO> lids;
+  std::vector<double> values;
+  for (const auto& [g, v] : diag) {
+    lids.push_back(owned_->getLocalElement(g));
+    values.push_back(v);
   }
+  if (lids != d_lids_) {  // other dofs (a new set): clear the last ones
+    write_entries(*d_, d_lids_, std::vector<double>(d_lids_.size(), 0.0));
+    d_lids_ = std::move(lids);
+  }
+  write_entries(*d_, d_lids_, values);
+  masked_reduction_.set_diagonal(d_);
 }
 
 // docs/THEORY.md §3.2 (and §5.4: P^T A Pt + X + D with the exact right factor).
@@ -100,7 +140,10 @@ void Elimination::reduce_residual(const Vector& g, Vector& R) const {
     R.assign(g);
     return;
   }
-  P_->apply(g, R, Teuchos::TRANS);
+  if (masked_)
+    apply_mask(*keep_, g, R);
+  else
+    P_->apply(g, R, Teuchos::TRANS);
 }
 
 void Elimination::expand(const Vector& dq, Vector& du) const {
@@ -108,7 +151,10 @@ void Elimination::expand(const Vector& dq, Vector& du) const {
     du.assign(dq);
     return;
   }
-  P_->apply(dq, du, Teuchos::NO_TRANS);
+  if (masked_)
+    apply_mask(*keep_, dq, du);
+  else
+    P_->apply(dq, du, Teuchos::NO_TRANS);
 }
 
 }  // namespace emc::linalg

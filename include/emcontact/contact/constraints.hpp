@@ -22,6 +22,8 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   bool use(std::vector<Active>* trial, ActiveIndex index);
   /// All ranks' entries of the trial set (chains).
   const ActiveIndex& index() const { return index_; }
+  /// The contact nodes at t_n (the positions at u0 of the current contact nodes), for start.
+  void set_start_positions(Positions x0) { x0_ = x0; }
 
   void start(const Vector& u0, Vector& u1) override;
   void before_reduce(const Vector& u0, const Vector& u1, Vector& g, const Matrix& A) override;

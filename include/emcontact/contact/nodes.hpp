@@ -4,11 +4,14 @@
 // step, with the facets of the chains through them. Only their positions are imported, so a
 // rank's contact memory and traffic grow with its share of the contact surface, not the model.
 #include <Kokkos_Core.hpp>
+#include <algorithm>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
 #include "emcontact/contact/active.hpp"
 #include "emcontact/contact/pairs.hpp"
+#include "emcontact/contact/search.hpp"
 #include "emcontact/fem/discretization.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/math.hpp"
@@ -23,7 +26,14 @@ struct LocalFacets {
   Kokkos::View<int* [3], ExecSpace> nodes;  ///< contact-node indices
   Kokkos::View<int*, ExecSpace> id;         ///< the facet's id in the pair
   std::unordered_map<int, int> index;       ///< facet id -> position (host)
+  /// a rigid master's grid (grown by the pair's max penetration), built with the facets: they
+  /// never move (null for a deformable master)
+  std::shared_ptr<const FacetGrid> rigid_grid;
   int size() const { return static_cast<int>(id.extent(0)); }
+  /// The grid of the facets at x (the pair's max penetration `margin`): a rigid master's own.
+  FacetGrid grid(Kokkos::View<const double* [3], ExecSpace> x, double margin) const {
+    return rigid_grid ? *rigid_grid : FacetGrid(nodes, x, margin);
+  }
   int find(int facet) const {
     auto it = index.find(facet);
     return it == index.end() ? -1 : it->second;
@@ -58,7 +68,7 @@ KOKKOS_INLINE_FUNCTION void slave_normal(const LocalSlaves& ls, int k, const X& 
 /// What the selection moved: for perf/README.md's traffic figures.
 struct NodeTraffic {
   long long selections = 0;      ///< calls of select
-  long long imports = 0;         ///< position imports
+  long long imports = 0;         ///< position imports (none while no rank has remote nodes)
   long long bytes_imported = 0;  ///< received from other ranks over all imports
   int nodes = 0;                 ///< contact nodes at the last selection
   int remote = 0;                ///< of which owned by other ranks
@@ -82,8 +92,8 @@ class ContactNodes {
   int size() const { return static_cast<int>(gid_.size()); }
   /// Contact-node index of global node n (-1 if not one of mine); its global node id.
   int local(int n) const {
-    auto it = lid_.find(n);
-    return it == lid_.end() ? -1 : it->second;
+    const auto it = std::lower_bound(gid_.begin(), gid_.end(), n);
+    return it == gid_.end() || *it != n ? -1 : static_cast<int>(it - gid_.begin());
   }
   int global(int l) const { return gid_[l]; }
   const LocalFacets& facets(int pair) const { return facets_[pair]; }
@@ -91,6 +101,8 @@ class ContactNodes {
   /// The slave nodes of the pair that this rank owns (global ids, ascending).
   const std::vector<int>& my_slaves(int pair) const { return my_slaves_[pair]; }
   const NodeTraffic& traffic() const { return traffic_; }
+  /// Changes when the contact nodes (hence the rows of Positions) change.
+  int builds() const { return builds_; }
 
  private:
   const fem::Discretization& disc_;
@@ -102,22 +114,28 @@ class ContactNodes {
   std::vector<Kokkos::View<const double* [3], ExecSpace>> slave_X_;
   std::vector<Kokkos::View<const LO* [3], ExecSpace>> slave_dofs_;
   std::vector<int> gid_;  ///< contact node -> global node (deformable, then rigid)
-  std::unordered_map<int, int> lid_;
+  /// per pair: my slaves and their slave-surface triangles in slave_side_ indices (fixed)
+  std::vector<LocalSlaves> slave_sides_;
   int deformable_ = 0;                      ///< the first deformable_ contact nodes carry dofs
   std::vector<std::vector<int>> selected_;  ///< per pair: the facets of the last build
   std::vector<LocalFacets> facets_;
   std::vector<LocalSlaves> slaves_;
   Teuchos::RCP<const Map> map_;
-  Teuchos::RCP<const Import> import_;
+  Teuchos::RCP<const Import> import_;       ///< of the remote contact nodes' dofs only
+  bool imports_ = false;                    ///< some rank has remote contact nodes
+  Kokkos::View<LO* [3], ExecSpace> src_;    ///< per dof: owned row, or -1 - its row in map_
   Kokkos::View<double* [3], ExecSpace> X_;  ///< reference (or rigid) positions
   mutable NodeTraffic traffic_;
+  int builds_ = 0;
 
   void slave_box_data(const std::vector<int>& mine);
   std::vector<std::vector<double>> slave_boxes(const Vector& u0, const Vector& u1) const;
   std::vector<std::vector<int>> facets_in_reach(const Vector& u0, const Vector& u1) const;
   void close_chains(std::vector<std::vector<int>>& need, const ActiveIndex& index) const;
   void build(const std::vector<std::vector<int>>& need);
-  void build_slaves(std::size_t pair);
+  void build_slaves(std::size_t pair, Kokkos::View<const int*, ExecSpace> side_local);
+  static LocalSlaves slave_tris(const Pair& p, const std::vector<int>& mine,
+                                const std::vector<int>& side);
 };
 
 }  // namespace emc::contact

@@ -163,6 +163,14 @@ class FacetGrid {
     });
   }
 
+  /// False when no facet's grown box can hold y (y outside the grid, or in an empty cell): a
+  /// test before work that only the candidates need.
+  KOKKOS_INLINE_FUNCTION bool may_hold(const double y[3]) const {
+    int d[3];
+    const int c = shape_.cell_of(y, d);
+    return c >= 0 && boxes_.start(c) < boxes_.start(c + 1);
+  }
+
   /// The frame and metric of facet f in the grid's configuration.
   KOKKOS_INLINE_FUNCTION kernels::FacetMetric metric(int f) const {
     kernels::FacetMetric m;

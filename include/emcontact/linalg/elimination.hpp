@@ -59,6 +59,7 @@ class Elimination {
 
   /// True when P is the identity on every rank (nothing constrained): reduce/expand copy.
   bool identity() const { return identity_; }
+  /// P as a matrix: null when P is a 0/1 diagonal (masked: applied as the keep vector).
   Teuchos::RCP<const Matrix> P() const { return P_; }
   /// Times the structured path (P^T A Pt + X + D) built its pattern: once per active set.
   int pattern_builds() const { return structured_reduction_.builds(); }
@@ -85,6 +86,8 @@ class Elimination {
   Teuchos::RCP<Matrix> P_;
   Teuchos::RCP<const Vector> keep_;          ///< 1 where P's row is e_i, 0 on fixed and slave rows
   std::vector<std::pair<GO, double>> diag_;  ///< D's entries (owned dofs)
+  Teuchos::RCP<Vector> d_;                   ///< D as a vector (masked path)
+  std::vector<LO> d_lids_;                   ///< the rows of d_ that may be non-zero
   std::vector<GO> fixed_;
   std::vector<PRow> rows_, pt_rows_;  ///< P's special rows; Pt's that differ
   std::vector<PRow> left_rows_;       ///< the left factor's special rows (P's unless Pl is set)
@@ -92,6 +95,7 @@ class Elimination {
   bool linearised_ = false;  ///< set_linearisation was called (on some rank)
   std::vector<GO> p_key_;    ///< the fixed dofs and the special rows' columns P's graph has
   int p_builds_ = 0;
+  bool built_ = false;  ///< P (or, masked, its keep vector) was built for p_key_
   bool identity_ = true;
   bool masked_ = false;  ///< P is diagonal (0/1) on every rank: MaskedReduction, no products
   mutable MaskedReduction masked_reduction_;

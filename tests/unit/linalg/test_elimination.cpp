@@ -262,6 +262,9 @@ TEST(Elimination, MaskedPathIsExact) {
       return std::find(fixed_all.begin(), fixed_all.end(), g) == fixed_all.end() &&
              std::find(slaves_all.begin(), slaves_all.end(), g) == slaves_all.end();
     };
+    auto kept_fixed = [&](GO g) {  // not a fixed dof (a dof both fixed and slave stays at 1)
+      return std::find(fixed_all.begin(), fixed_all.end(), g) == fixed_all.end();
+    };
     int mismatches = 0;
     for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
       const GO i = map->getGlobalElement(l);
@@ -272,6 +275,33 @@ TEST(Elimination, MaskedPathIsExact) {
           expect =
               std::find(fixed_all.begin(), fixed_all.end(), i) != fixed_all.end() ? 1.0 : beta + i;
         mismatches += row[j] != expect;
+      }
+    }
+    // P^T g and P dq with P = diag(kept): the entries kept, zeros elsewhere (P is not formed)
+    Vector g(map), R(map), du(map);
+    {
+      auto gv = g.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (std::size_t l = 0; l < map->getNodeNumElements(); ++l)
+        gv(l, 0) = 1.0 + 0.25 * static_cast<double>(map->getGlobalElement(l));
+    }
+    elim.reduce_residual(g, R);
+    elim.expand(g, du);
+    // beta again at the same dofs (a Newton iterate): only the values change
+    std::vector<std::pair<GO, double>> doubled = dummies;
+    for (auto& d : doubled) d.second *= 2;
+    elim.set_dummy_values(doubled);
+    const auto Ar2 = elim.reduce_matrix(A);
+    {
+      auto Rv = R.getLocalViewHost(Tpetra::Access::ReadOnly);
+      auto dv = du.getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+        const GO i = map->getGlobalElement(l);
+        const double expect = kept(i) ? 1.0 + 0.25 * static_cast<double>(i) : 0.0;
+        mismatches += Rv(l, 0) != expect;
+        mismatches += dv(l, 0) != expect;
+        const bool slave =
+            std::find(slaves_all.begin(), slaves_all.end(), i) != slaves_all.end() && kept_fixed(i);
+        mismatches += slave && dense_row(*Ar2, i)[i] != 2 * (beta + i);
       }
     }
     int all = 0;
