@@ -60,14 +60,16 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_assembly_parameters() {
       "atomic in Serial (perf/README.md \"OpenMP threads\"); atomic "
       "runs with several threads differ in the last bits from run to run (with one thread "
       "they add in loop order, as reproducible).",
-      string_choice("scatter", {"auto", "coloured", "atomic"},
-                    {"coloured if Kokkos runs more than one thread, else atomic",
-                     "one loop per colour of 512-element chunks (chunks of a colour share no "
-                     "node) with plain adds: every row sums in the same order",
-                     "one loop over all elements with atomic adds: with several threads the "
-                     "order of the sums varies, and so does the round-off"},
-                    std::vector<ScatterChoice>{ScatterChoice::automatic, ScatterChoice::coloured,
-                                               ScatterChoice::atomic}));
+      string_choice(
+          "scatter", {"auto", "coloured", "atomic"},
+          {"atomic in Kokkos' Serial backend (plain adds in loop order), coloured on a threaded "
+           "backend (also on one thread: its atomic adds are locked instructions)",
+           "one loop per colour of 512-element chunks (chunks of a colour share no "
+           "node) with plain adds: every row sums in the same order",
+           "one loop over all elements with atomic adds: with several threads the "
+           "order of the sums varies, and so does the round-off"},
+          std::vector<ScatterChoice>{ScatterChoice::automatic, ScatterChoice::coloured,
+                                     ScatterChoice::atomic}));
   return pl;
 }
 
