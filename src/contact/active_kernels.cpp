@@ -258,4 +258,22 @@ ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Val
   return sum;
 }
 
+void dummy_betas(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof, const Values beta) {
+  const auto lA = A.getLocalMatrixDevice();
+  const auto rows = A.getRowMap()->getLocalMap();
+  const auto cols = A.getColMap()->getLocalMap();
+  Kokkos::parallel_for(
+      "emcontact::contact::dummy_betas", Kokkos::RangePolicy<ExecSpace>(0, beta.extent(0)),
+      KOKKOS_LAMBDA(const int k) {
+        double tr = 0;
+        for (int c = 0; c < 3; ++c) {
+          const GO g = dof(3 * k + c);
+          const LO row = rows.getLocalElement(g), col = cols.getLocalElement(g);
+          for (auto j = lA.graph.row_map(row); j < lA.graph.row_map(row + 1); ++j)
+            if (lA.graph.entries(j) == col) tr += lA.values(j);
+        }
+        beta(k) = tr / 3;
+      });
+}
+
 }  // namespace emc::contact

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "emcontact/contact/active_kernels.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/law.hpp"
 #include "emcontact/contact/search.hpp"
@@ -148,7 +149,7 @@ void Contact::expand_node(int node, int c, double w, const ActiveIndex& index,
   }
 }
 
-// A_ii of owned dof i, read from its row (on the host; slave_traces is the kernel for many).
+// A_ii of owned dof i, read from its row (on the host; dummy_betas is the kernel for many).
 double diagonal_entry(const Matrix& A, GO i) {
   const LO row = A.getRowMap()->getLocalElement(i);
   const LO col = A.getColMap()->getLocalElement(i);
@@ -160,32 +161,6 @@ double diagonal_entry(const Matrix& A, GO i) {
   return 0.0;
 }
 
-namespace {
-
-/// beta(k) = tr(A_ss) / 3 for the slave whose owned dofs are dof(3k .. 3k + 2), read from their
-/// rows of A (only those rows: the whole diagonal would cost a pass over A at every Newton
-/// iteration). A kernel in a free function.
-void slave_traces(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof,
-                  const Kokkos::View<double*, ExecSpace> beta) {
-  const auto lA = A.getLocalMatrixDevice();
-  const auto rows = A.getRowMap()->getLocalMap();
-  const auto cols = A.getColMap()->getLocalMap();
-  Kokkos::parallel_for(
-      "emcontact::contact::dummy_values", Kokkos::RangePolicy<ExecSpace>(0, beta.extent(0)),
-      KOKKOS_LAMBDA(const int k) {
-        double tr = 0;
-        for (int c = 0; c < 3; ++c) {
-          const GO g = dof(3 * k + c);
-          const LO row = rows.getLocalElement(g), col = cols.getLocalElement(g);
-          for (auto j = lA.graph.row_map(row); j < lA.graph.row_map(row + 1); ++j)
-            if (lA.graph.entries(j) == col) tr += lA.values(j);
-        }
-        beta(k) = tr / 3;
-      });
-}
-
-}  // namespace
-
 std::vector<std::pair<GO, double>> Contact::dummy_values(const Matrix& A,
                                                          const std::vector<GO>& dummies) const {
   const std::size_t n = dummies.size() / 3;  // a slave's three dofs in a row
@@ -193,7 +168,7 @@ std::vector<std::pair<GO, double>> Contact::dummy_values(const Matrix& A,
   Kokkos::View<GO*, ExecSpace> dof(Kokkos::ViewAllocateWithoutInitializing("emc::dummies"), 3 * n);
   Kokkos::deep_copy(dof, Kokkos::View<const GO*, Kokkos::HostSpace>(dummies.data(), 3 * n));
   Kokkos::View<double*, ExecSpace> beta(Kokkos::ViewAllocateWithoutInitializing("emc::beta"), n);
-  slave_traces(A, dof, beta);
+  dummy_betas(A, dof, beta);
   const auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), beta);
   std::vector<std::pair<GO, double>> out;
   for (std::size_t k = 0; k < n; ++k)

@@ -96,8 +96,8 @@ void gather_ids(const Kokkos::View<const int*, ExecSpace> map,
       KOKKOS_LAMBDA(const int k) { out(k) = map(in(k)); });
 }
 
-/// x(l) = X(l) + u(l) over the contact nodes l: u from the owned vector v (src >= 0) or the
-/// imported one r (src = -1 - its row), zero for the first rigid node nd and after.
+/// docs/THEORY.md §8: x(l) = X(l) + u(l) over the contact nodes l: u from the owned vector v (src
+/// >= 0) or the imported one r (src = -1 - its row), zero for the first rigid node nd and after.
 void contact_positions(const Kokkos::View<const double* [3], ExecSpace> X,
                        const Kokkos::View<const LO* [3], ExecSpace> src, const int nd,
                        const Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> v,

@@ -13,7 +13,8 @@ using Teuchos::rcp;
 
 namespace {
 
-/// v(lids[k]) = values[k] (distinct local rows), on the vector's device.
+/// v(lids[k]) = values[k] (distinct local rows), on the vector's device: D's entries
+/// (docs/THEORY.md §3.2).
 void write_entries(Vector& v, const std::vector<LO>& lids, const std::vector<double>& values) {
   if (lids.empty()) return;
   Kokkos::View<LO*, ExecSpace> l(Kokkos::ViewAllocateWithoutInitializing("emc::entry_rows"),
@@ -29,7 +30,7 @@ void write_entries(Vector& v, const std::vector<LO>& lids, const std::vector<dou
       KOKKOS_LAMBDA(const int k) { d(l(k), 0) = x(k); });
 }
 
-/// y = P x = P^T x for P = diag(keep) (0/1): x_i where keep_i != 0, else 0.
+/// docs/THEORY.md §3.6: y = P x = P^T x for P = diag(keep) (0/1): x_i where keep_i != 0, else 0.
 void apply_mask(const Vector& keep, const Vector& x, Vector& y) {
   const auto k = keep.getLocalViewDevice(Tpetra::Access::ReadOnly);
   const auto xv = x.getLocalViewDevice(Tpetra::Access::ReadOnly);

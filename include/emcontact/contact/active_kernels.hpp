@@ -109,4 +109,9 @@ struct ClosureTerms {
 ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn,
                            Values3 N1);
 
+/// docs/THEORY.md §3.2 (eq. 44): beta(k) = tr(A_ss) / 3 for the slave whose owned dofs are
+/// dof(3k .. 3k + 2), read from their rows of A (only those rows: the whole diagonal would cost a
+/// pass over A at every Newton iterate); a row without a diagonal entry adds 0.
+void dummy_betas(const Matrix& A, Kokkos::View<const GO*, ExecSpace> dof, Values beta);
+
 }  // namespace emc::contact

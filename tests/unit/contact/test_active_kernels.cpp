@@ -12,6 +12,7 @@
 #include <random>
 
 #include "emcontact/contact/active_kernels.hpp"
+#include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/nodes.hpp"
 #include "kernels/coulomb.hpp"
@@ -558,4 +559,50 @@ TEST(ActiveKernels, PositionRoundoffEqualsAHostLoop) {
     EXPECT_EQ(rh(q), expect) << "entry " << q;
     EXPECT_GT(rh(q), 0) << "entry " << q;
   }
+}
+
+// beta = tr(A_ss) / 3 (docs/THEORY.md §3.2) by the kernel over the dummies equals the host loop
+// over each dof's diagonal entry, bit for bit, on a matrix with off-diagonal entries, a row
+// without a diagonal entry and a column map that holds the other rank's dofs.
+TEST(ActiveKernels, DummyBetasEqualAHostLoop) {
+  using emc::GO;
+  using emc::Map;
+  using emc::Matrix;
+  auto comm = Tpetra::getDefaultComm();
+  const int nodes = 5, n = 3 * nodes * comm->getSize();
+  auto map = Teuchos::rcp(new Map(n, 3 * nodes, 0, comm));
+  Matrix A(map, 4);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> val(-2.0, 5.0);
+  for (std::size_t l = 0; l < map->getNodeNumElements(); ++l) {
+    const GO i = map->getGlobalElement(l);
+    std::vector<GO> cols = {(i + 1) % n, (i + n - 4) % n, (i + 7) % n};
+    if (i % 7 != 1) cols.push_back(i);  // some rows have no diagonal entry
+    std::vector<double> v;
+    for (std::size_t k = 0; k < cols.size(); ++k) v.push_back(val(rng));
+    A.insertGlobalValues(i, Teuchos::ArrayView<const GO>(cols),
+                         Teuchos::ArrayView<const double>(v));
+  }
+  A.fillComplete();
+  std::vector<GO> dummies;
+  for (int s = 0; s < nodes; s += 2)  // every other owned node is a slave
+    for (int c = 0; c < 3; ++c) dummies.push_back(map->getGlobalElement(3 * s + c));
+  const int ns = static_cast<int>(dummies.size() / 3);
+  Kokkos::View<GO*, emc::ExecSpace> dof("dof", dummies.size());
+  Kokkos::deep_copy(dof,
+                    Kokkos::View<const GO*, Kokkos::HostSpace>(dummies.data(), dummies.size()));
+  c::Values beta("beta", ns);
+  c::dummy_betas(A, dof, beta);
+  auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), beta);
+  int zero_rows = 0;
+  for (int k = 0; k < ns; ++k) {
+    double tr = 0;
+    for (int c = 0; c < 3; ++c) {
+      tr += c::diagonal_entry(A, dummies[3 * k + c]);
+      zero_rows += dummies[3 * k + c] % 7 == 1;
+    }
+    EXPECT_EQ(bh(k), tr / 3) << "slave " << k;
+    EXPECT_NE(bh(k), 0.0);
+  }
+  EXPECT_GT(zero_rows, 0);  // the case of a row without its diagonal entry is met
 }
