@@ -29,7 +29,7 @@ void entering_nodes(const FacetGrid& grid1, const LocalSlaves ls,
         const int s = ls.node(k);
         found(k) = 0;
         const double y1[3] = {x1(s, 0), x1(s, 1), x1(s, 2)};
-        if (busy(s) || !grid.may_hold(y1)) return;  // no candidate: no normal needed
+        if (busy(s) || !grid.any_box(y1)) return;  // no candidate: no normal needed
         double n_s[3];
         slave_normal(ls, k, x1, n_s);
         const Hit h1 = entered_facet(grid, facets, x0, x1, s, n_s, rule);

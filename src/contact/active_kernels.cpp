@@ -113,6 +113,13 @@ double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d) {
   return moved;
 }
 
+void add_to_slaves(Refs refs, Values3 d, OwnedValuesRW u) {
+  Kokkos::parallel_for(
+      "emcontact::contact::add_to_slaves", Policy(0, count(refs)), KOKKOS_LAMBDA(const int k) {
+        for (int c = 0; c < 3; ++c) u(refs(k).dof[c], 0) += d(k, c);
+      });
+}
+
 void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1,
                               Kokkos::View<double* [2], ExecSpace> xi, Values outside) {
   Kokkos::parallel_for(
@@ -262,6 +269,7 @@ void dummy_betas(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof, 
   const auto lA = A.getLocalMatrixDevice();
   const auto rows = A.getRowMap()->getLocalMap();
   const auto cols = A.getColMap()->getLocalMap();
+  const bool sorted = A.getCrsGraph()->isSorted();  // a row's columns in order: bisection
   Kokkos::parallel_for(
       "emcontact::contact::dummy_betas", Kokkos::RangePolicy<ExecSpace>(0, beta.extent(0)),
       KOKKOS_LAMBDA(const int k) {
@@ -269,7 +277,15 @@ void dummy_betas(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof, 
         for (int c = 0; c < 3; ++c) {
           const GO g = dof(3 * k + c);
           const LO row = rows.getLocalElement(g), col = cols.getLocalElement(g);
-          for (auto j = lA.graph.row_map(row); j < lA.graph.row_map(row + 1); ++j)
+          auto j = lA.graph.row_map(row), end = lA.graph.row_map(row + 1);
+          for (auto hi = end; sorted && j < hi;) {  // the first entry at or after col
+            const auto mid = j + (hi - j) / 2;
+            if (lA.graph.entries(mid) < col)
+              j = mid + 1;
+            else
+              hi = mid;
+          }
+          for (; j < end && (!sorted || lA.graph.entries(j) <= col); ++j)
             if (lA.graph.entries(j) == col) tr += lA.values(j);
         }
         beta(k) = tr / 3;

@@ -51,8 +51,13 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
     LawRows out;
     const LawState s = state({});
     for (const Law* law : present_) law->rows(s, *trial, nullptr, nullptr, out);
-    dummies_ = out.dummies;
     elim_.set_constraints(fixed_, out.rows, {});
+    elim_.set_dummies(out.dummies);  // beta on them at every iterate (before_reduce)
+    dummy_dofs_ = Kokkos::View<GO*, ExecSpace>(
+        Kokkos::ViewAllocateWithoutInitializing("emc::dummies"), out.dummies.size());
+    Kokkos::deep_copy(dummy_dofs_, Kokkos::View<const GO*, Kokkos::HostSpace>(out.dummies.data(),
+                                                                              out.dummies.size()));
+    beta_ = Values(Kokkos::ViewAllocateWithoutInitializing("emc::beta"), out.dummies.size() / 3);
   }
   applied_ = std::move(key);
   return !iterate_dependent_ || new_members;
@@ -71,8 +76,9 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, Vector& g
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: Newton iterates");
   Teuchos::TimeMonitor tm(*timer);  // beta, and the rows that follow the iterate
   roundoff_ = 0;
-  if (!iterate_dependent_) {  // P is fixed during the step, beta follows A (eq. 44)
-    elim_.set_dummy_values(contact_.dummy_values(A, dummies_));
+  if (!iterate_dependent_) {             // P is fixed during the step, beta follows A (eq. 44)
+    dummy_betas(A, dummy_dofs_, beta_);  // docs/THEORY.md §3.2
+    elim_.set_dummy_betas(beta_);
     return;
   }
   // P depends on the iterate (frictionless: N, tau at n+1/2, the facet): rebuild every time

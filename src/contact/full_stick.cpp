@@ -74,14 +74,9 @@ void FullStick::start(const LawState& s, std::vector<Active>& active, Vector& u1
   if (contact.global_count(static_cast<int>(sticking.size())) == 0) return;
   const Refs refs = contact.refs(sticking);
   Values3 d("emc::stick_corrections", sticking.size());
-  const auto& map = *contact.disc().owned_map();
   for (int sweep = 0; sweep < 8; ++sweep) {
     const double moved = stick_corrections(refs, s.x0, contact.positions(u1), d);
-    auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
-    auto uv = u1.getLocalViewHost(Tpetra::Access::ReadWrite);
-    for (std::size_t k = 0; k < sticking.size(); ++k)
-      for (int c = 0; c < 3; ++c)
-        uv(map.getLocalElement(fem::dof_gid(sticking[k].slave, c)), 0) += dh(k, c);
+    add_to_slaves(refs, d, u1.getLocalViewDevice(Tpetra::Access::ReadWrite));
     double all = 0;
     Teuchos::reduceAll(*contact.disc_comm(), Teuchos::REDUCE_MAX, 1, &moved, &all);
     if (all <= 1e-13) break;  // round-off: every slave already sat where it must

@@ -51,6 +51,8 @@ Elimination::Elimination(RCP<const Map> owned) : owned_(owned) {
 // rows' values are rewritten.
 void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vector<PRow>& rows,
                                   const std::vector<std::pair<GO, double>>& dummy_diag) {
+  dummies_.clear();  // set_dummies gives the new set's
+  dummy_rows_ = Kokkos::View<LO*, ExecSpace>();
   std::vector<GO> key = fixed;
   key.push_back(-1);
   int mask = 1;  // every special row empty: P is a 0/1 diagonal
@@ -124,6 +126,36 @@ void Elimination::set_dummy_values(const std::vector<std::pair<GO, double>>& dum
     d_lids_ = std::move(lids);
   }
   write_entries(*d_, d_lids_, values);
+  masked_reduction_.set_diagonal(d_);
+}
+
+// docs/THEORY.md §3.2: the dummies' entries of D, zero until set_dummy_betas writes them.
+void Elimination::set_dummies(const std::vector<GO>& dummies) {
+  dummies_ = dummies;
+  std::vector<std::pair<GO, double>> zero;
+  for (GO g : dummies) zero.emplace_back(g, 0.0);
+  set_dummy_values(zero);  // D's rows that may be non-zero now include the dummies
+  if (!masked_) return;
+  dummy_rows_ = Kokkos::View<LO*, ExecSpace>("emc::dummy_rows", dummies.size());
+  const auto rows = Kokkos::create_mirror_view(dummy_rows_);
+  for (std::size_t k = 0; k < dummies.size(); ++k) rows(k) = owned_->getLocalElement(dummies[k]);
+  Kokkos::deep_copy(dummy_rows_, rows);
+}
+
+// docs/THEORY.md §3.2: D = beta on the dummies, at every Newton iterate.
+void Elimination::set_dummy_betas(Kokkos::View<const double*, ExecSpace> beta) {
+  if (!masked_ || linearised_) {  // the host list of D's entries feeds the structured path
+    const auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), beta);
+    std::vector<std::pair<GO, double>> diag;
+    for (std::size_t k = 0; k < dummies_.size(); ++k) diag.emplace_back(dummies_[k], bh(k / 3));
+    set_dummy_values(diag);
+    return;
+  }
+  const auto rows = dummy_rows_;
+  const auto d = d_->getLocalViewDevice(Tpetra::Access::ReadWrite);
+  Kokkos::parallel_for(
+      "emcontact::linalg::dummy_diagonal", Kokkos::RangePolicy<ExecSpace>(0, rows.extent(0)),
+      KOKKOS_LAMBDA(const int k) { d(rows(k), 0) = beta(k / 3); });
   masked_reduction_.set_diagonal(d_);
 }
 

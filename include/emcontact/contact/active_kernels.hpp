@@ -64,6 +64,10 @@ void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind)
 /// largest |d| in units of the facet size.
 double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d);
 
+/// u(a.dof[c]) += d(k, c) for every entry k (the slaves' own dofs in an owned vector's values).
+using OwnedValuesRW = Kokkos::View<double**, Kokkos::LayoutLeft, ExecSpace>;
+void add_to_slaves(Refs refs, Values3 d, OwnedValuesRW u);
+
 /// §5 steps 2-3 on each frictionless entry's current facet: xi and x_{s,n+1} in place
 /// (xs1 starts at x1's slave), outside = how far xi lies outside the facet.
 void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1,

@@ -4,6 +4,7 @@
 // and the law's projection of the start iterate and of every update.
 #include <vector>
 
+#include "emcontact/contact/active_kernels.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/law.hpp"
 #include "emcontact/linalg/elimination.hpp"
@@ -38,12 +39,13 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<Active>* trial_ = nullptr;
   std::vector<std::array<double, 5>> applied_;  ///< (slave, facet, xi, slip) P was built for
   std::vector<std::array<int, 2>> members_;     ///< (slave, slip) of the last set used
-  std::vector<GO> dummies_;
-  std::vector<const Law*> present_;  ///< laws with an entry on some rank
-  bool iterate_dependent_ = false;   ///< some present law's rows follow the iterate
-  Positions x0_;                     ///< contact nodes at t_n
-  ActiveIndex index_;                ///< every rank's active entries (chains)
-  double roundoff_ = 0;              ///< LawRows::roundoff at the last iterate
+  Kokkos::View<GO*, ExecSpace> dummy_dofs_;     ///< the set's dummies, a slave's three in a row
+  Values beta_;                                 ///< beta per slave of dummy_dofs_ (eq. 44)
+  std::vector<const Law*> present_;             ///< laws with an entry on some rank
+  bool iterate_dependent_ = false;              ///< some present law's rows follow the iterate
+  Positions x0_;                                ///< contact nodes at t_n
+  ActiveIndex index_;                           ///< every rank's active entries (chains)
+  double roundoff_ = 0;                         ///< LawRows::roundoff at the last iterate
 
   LawState state(Positions x1) const;
   void subtract_loads(const std::vector<std::pair<GO, double>>& load, Vector& g) const;

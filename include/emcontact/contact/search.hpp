@@ -163,12 +163,22 @@ class FacetGrid {
     });
   }
 
-  /// False when no facet's grown box can hold y (y outside the grid, or in an empty cell): a
+  /// Whether some facet's grown box holds y (exactly the facets for_each_candidate visits): a
   /// test before work that only the candidates need.
-  KOKKOS_INLINE_FUNCTION bool may_hold(const double y[3]) const {
+  KOKKOS_INLINE_FUNCTION bool any_box(const double y[3]) const {
     int d[3];
     const int c = shape_.cell_of(y, d);
-    return c >= 0 && boxes_.start(c) < boxes_.start(c + 1);
+    if (c < 0) return false;
+    short q[3];
+    for (int i = 0; i < 3; ++i) q[i] = static_cast<short>(shape_.quantum(y[i], i, d[i]));
+    for (int k = boxes_.start(c); k < boxes_.start(c + 1); ++k) {
+      const CellBlock& b = boxes_.blocks(k);
+      for (unsigned m = lanes_holding(b, q); m; m &= m - 1) {
+        const int j = kernels::lowest_set_bit(m);
+        if (surely_holds(b, j, q) || in_box(b.facet[j], y)) return true;
+      }
+    }
+    return false;
   }
 
   /// The frame and metric of facet f in the grid's configuration.
@@ -296,10 +306,10 @@ class FacetGrid {
         const int j = kernels::lowest_set_bit(m);
         const int f = b.facet[j];
         if (!surely_holds(b, j, q) && !in_box(f, y)) continue;
-        if (!all && !maybe_inside(prism_(f), yf, 1e-9)) continue;
-        prefetch(&rec_(f, 0));
+        prefetch(&rec_(f, 0));  // before the float test: its load and theirs overlap
         prefetch(&rec_(f, 8));
         prefetch(&rec_(f, 16));
+        if (!all && !maybe_inside(prism_(f), yf, 1e-9)) continue;
         found[n++] = f;
         if (n == 32) {
           visit(found, n, fn);

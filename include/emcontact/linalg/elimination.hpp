@@ -3,6 +3,7 @@
 // system (P^T A P + D) dq = -P^T g keeps the number of equations fixed. A fixed (Dirichlet)
 // dof has a zero column in P and a dummy row 1 * dq = 0 (D = 1 there); later, contact slaves
 // add rows of P that tie them to their master facet, with D = beta on their dummies.
+#include <Kokkos_Core.hpp>
 #include <Teuchos_RCP.hpp>
 #include <vector>
 
@@ -49,6 +50,13 @@ class Elimination {
   /// Replaces the values of D (fixed dofs keep 1); P is unchanged. For the beta of eq. 44,
   /// which follows the Newton matrix while the active set, hence P, stays the same.
   void set_dummy_values(const std::vector<std::pair<GO, double>>& dummy_diag);
+  /// The dummies of the set just given to set_constraints: owned dofs, a slave's three in a
+  /// row, whose D set_dummy_betas writes (D = 0 there until then).
+  void set_dummies(const std::vector<GO>& dummies);
+  /// D = beta(k) on the three dummies of slave k (set_dummies), the rest of D unchanged
+  /// (docs/THEORY.md §3.2): beta follows A at every Newton iterate, so on the masked path it
+  /// is one kernel on D's vector, with no host pass.
+  void set_dummy_betas(Kokkos::View<const double*, ExecSpace> beta);
 
   /// The exact linearisation of frictionless contact (§5): the right factor Pt (rows that differ
   /// from P; empty: Pt = P) and the variation X of P^T. Reset by set_constraints.
@@ -88,6 +96,8 @@ class Elimination {
   std::vector<std::pair<GO, double>> diag_;  ///< D's entries (owned dofs)
   Teuchos::RCP<Vector> d_;                   ///< D as a vector (masked path)
   std::vector<LO> d_lids_;                   ///< the rows of d_ that may be non-zero
+  std::vector<GO> dummies_;                  ///< set_dummies' dofs
+  Kokkos::View<LO*, ExecSpace> dummy_rows_;  ///< their rows of d_ (masked path)
   std::vector<GO> fixed_;
   std::vector<PRow> rows_, pt_rows_;  ///< P's special rows; Pt's that differ
   std::vector<PRow> left_rows_;       ///< the left factor's special rows (P's unless Pl is set)

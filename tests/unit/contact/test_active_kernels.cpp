@@ -187,6 +187,21 @@ TEST(ActiveKernels, StickCorrectionsEqualAHostLoop) {
   EXPECT_EQ(moved, mx);
 }
 
+// §4.1: the corrections land on each entry's own three dofs, as a host loop adds them.
+TEST(ActiveKernels, AddToSlavesEqualsAHostLoop) {
+  Entries e(kEntries);
+  c::Values3 d("d", e.n);
+  c::stick_corrections(e.refs, e.x0, e.x1, d);
+  Kokkos::View<double**, Kokkos::LayoutLeft, emc::ExecSpace> u("u", e.g.extent(0), 1);
+  Kokkos::deep_copy(u, e.g);  // a copy: g keeps the values before
+  c::add_to_slaves(e.refs, d, u);
+  const auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u);
+  const auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
+  for (int q = 0; q < e.n; ++q)
+    for (int i = 0; i < 3; ++i)
+      EXPECT_EQ(uh(e.host[q].dof[i], 0), e.gval(e.host[q].dof[i]) + dh(q, i));
+}
+
 // §4.1: where nothing moved over the step (Newton's cold start u_{n+1} = u_n), a keeping entry
 // is not touched, not even by round-off; a closing one is moved onto its master point.
 TEST(ActiveKernels, StickCorrectionsLeaveTheColdStartAlone) {

@@ -310,6 +310,65 @@ TEST(Elimination, MaskedPathIsExact) {
   }
 }
 
+// beta per slave through set_dummies and set_dummy_betas (one kernel on D's vector on the masked
+// path, the host list on the structured one) gives the reduced matrix of set_dummy_values bit
+// for bit: at two iterates of a set, after a new set (the last set's dummies cleared), on both
+// paths and on 1 and 2 ranks (a slave's three dofs on one rank).
+TEST(Elimination, DummyBetasEqualDummyValues) {
+  auto comm = Tpetra::getDefaultComm();
+  auto map = Teuchos::rcp(new Map(kN, 0, comm));
+  const auto A = distributed(dense_matrix(), map);
+  struct Set {
+    std::vector<GO> fixed;
+    std::vector<int> slaves;
+    bool masked;  ///< the slaves' rows empty (P a 0/1 diagonal), else tied to node 3
+  };
+  const std::vector<Set> sets = {{{0, 1, 2}, {1, 4}, true},
+                                 {{9, 10, 11}, {0, 5}, true},
+                                 {{0, 1, 2}, {2, 4}, false},
+                                 {{}, {4}, true}};
+  linalg::Elimination fast(map), ref(map);
+  for (std::size_t pass = 0; pass < sets.size(); ++pass) {
+    const Set& set = sets[pass];
+    std::vector<GO> fixed, dummies;
+    std::vector<linalg::PRow> rows;
+    for (GO g : set.fixed)
+      if (map->isNodeGlobalElement(g)) fixed.push_back(g);
+    for (int n : set.slaves)
+      for (int c = 0; c < 3; ++c) {
+        const GO g = 3 * n + c;
+        if (!map->isNodeGlobalElement(g)) continue;
+        rows.push_back(set.masked ? linalg::PRow{g, {}, {}} : linalg::PRow{g, {9 + c}, {0.5}});
+        dummies.push_back(g);
+      }
+    fast.set_constraints(fixed, rows, {});
+    fast.set_dummies(dummies);
+    for (int it = 0; it < 2; ++it) {  // two Newton iterates: new values at the same dummies
+      Kokkos::View<double*, ExecSpace> beta("beta", dummies.size() / 3);
+      auto bh = Kokkos::create_mirror_view(beta);
+      std::vector<std::pair<GO, double>> diag;
+      for (std::size_t k = 0; k < dummies.size(); ++k) {
+        bh(k / 3) = (1 + it) * (3.25 + pass) + 0.5 * static_cast<double>(dummies[k] / 3);
+        diag.emplace_back(dummies[k], bh(k / 3));
+      }
+      Kokkos::deep_copy(beta, bh);
+      fast.set_dummy_betas(beta);
+      ref.set_constraints(fixed, rows, diag);
+      const auto Af = fast.reduce_matrix(A);
+      std::vector<std::vector<double>> got;
+      for (std::size_t l = 0; l < map->getNodeNumElements(); ++l)
+        got.push_back(dense_row(*Af, map->getGlobalElement(l)));
+      const auto Ar = ref.reduce_matrix(A);
+      int mismatches = 0;
+      for (std::size_t l = 0; l < map->getNodeNumElements(); ++l)
+        mismatches += got[l] != dense_row(*Ar, map->getGlobalElement(l));
+      int all = 0;
+      Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &mismatches, &all);
+      EXPECT_EQ(all, 0) << "set " << pass << ", iterate " << it;
+    }
+  }
+}
+
 namespace {
 
 /// The dense P for slave rows and fixed dofs.
