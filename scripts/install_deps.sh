@@ -8,6 +8,7 @@ $SUDO apt-get update -q
 # libptscotch-dev must be named: Trilinos' CMake configs link it but no package depends on it.
 # libmumps-dev (MUMPS's MPI build, Solver/Linear/type = mumps; it brings libmumps-headers-dev)
 # comes with trilinos-all-dev but is named because emcontact calls it directly.
+# libsuitesparse-dev: UMFPACK, Solver/Linear/type = umfpack (one rank).
 # libopenblas0-serial: Debian's alternatives then give every BLAS and LAPACK user (MUMPS's dense
 # kernels above all) OpenBLAS, single-threaded, instead of the reference BLAS (the hollow
 # cylinders 98 s against 112 s, perf/README.md "MUMPS").
@@ -17,7 +18,7 @@ $SUDO apt-get update -q
 # python3-paraview and xauth are only recommends (of paraview, of xvfb), hence named.
 $SUDO apt-get install -y -q --no-install-recommends \
   g++ cmake ninja-build git clang-format clang-tidy \
-  trilinos-all-dev libptscotch-dev libmumps-dev libopenblas0-serial libopenmpi-dev openmpi-bin \
+  trilinos-all-dev libptscotch-dev libmumps-dev libsuitesparse-dev libopenblas0-serial libopenmpi-dev openmpi-bin \
   libhdf5-openmpi-dev \
   libgmsh-dev gmsh libgtest-dev libbenchmark-dev \
   python3-matplotlib python3-numpy python3-h5py \

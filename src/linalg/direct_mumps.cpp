@@ -71,36 +71,11 @@ struct DirectMumps::State {
   RCP<const Graph> graph;           ///< held, so that its address cannot be reused
   std::vector<MUMPS_INT> irn, jcn;  ///< 1-based global rows and columns of my entries
   std::vector<double> a;
-  RCP<const Map> rows, root;  ///< the matrix rows; all rows on rank 0
+  RCP<const Map> root;  ///< all rows on rank 0
   RCP<Import> to_root;
   RCP<Vector> rhs;  ///< on root: MUMPS's centralized right-hand side and solution
   bool analysed = false, factored = false;
 };
-
-namespace {
-
-/// (LU)^-1 of the factors DirectMumps holds, as a Tpetra operator.
-class MumpsInverse : public Operator {
- public:
-  MumpsInverse(DirectMumps& m, RCP<const Map> map) : m_(m), map_(std::move(map)) {}
-  RCP<const Map> getDomainMap() const override { return map_; }
-  RCP<const Map> getRangeMap() const override { return map_; }
-  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode, double alpha,
-             double beta) const override {
-    if (mode != Teuchos::NO_TRANS) throw Error("internal: MUMPS operator has no transpose");
-    Vector z(map_);
-    for (std::size_t j = 0; j < X.getNumVectors(); ++j) {
-      m_.solve(*X.getVector(j), z);
-      Y.getVectorNonConst(j)->update(alpha, z, beta);
-    }
-  }
-
- private:
-  DirectMumps& m_;
-  RCP<const Map> map_;
-};
-
-}  // namespace
 
 DirectMumps::DirectMumps(const RCP<const Comm>& comm) : s_(std::make_shared<State>()) {
   s_->comm = comm;
@@ -204,10 +179,10 @@ void DirectMumps::analyse(const RCP<const Matrix>& A) {
   run(1);
   s_->analysed = true;
   s_->graph = A->getCrsGraph();
-  s_->rows = A->getRowMap();
+  rows_ = A->getRowMap();
   const auto comm = A->getRowMap()->getComm();
   s_->root = rcp(new Map(n, comm->getRank() == 0 ? n : 0, 0, comm));
-  s_->to_root = rcp(new Import(s_->rows, s_->root));
+  s_->to_root = rcp(new Import(rows_, s_->root));
   s_->rhs = rcp(new Vector(s_->root));
   ++analyses_;
 }
@@ -245,11 +220,6 @@ void DirectMumps::solve(const Vector& b, Vector& x) {
     run(3);  // the solution overwrites rhs on the host
   }
   x.doExport(rhs, *s_->to_root, Tpetra::INSERT);
-}
-
-RCP<Operator> DirectMumps::as_operator() {
-  if (s_->rows.is_null()) throw Error("internal: MUMPS operator before any factorisation");
-  return rcp(new MumpsInverse(*this, s_->rows));
 }
 
 }  // namespace emc::linalg

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "emcontact/linalg/direct_umfpack.hpp"
 #include "emcontact/linalg/rigid_modes.hpp"
 
 namespace emc::linalg {
@@ -61,12 +62,14 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
         "Solver/Linear/type = klu2 runs on one rank only (Debian's Amesos2 KLU2 is wrong on "
         "2+ ranks); allowed on " +
         std::to_string(comm->getSize()) + " ranks: gmres, cg");
-  if (type_ != SolverType::klu2 && type_ != SolverType::mumps) check_pass_through(comm, file);
+  if (type_ == SolverType::umfpack) direct_ = std::make_shared<DirectUmfpack>(comm);
+  if (!direct()) check_pass_through(comm, file);
 }
 
 std::string LinearSolver::description() const {
   if (type_ == SolverType::klu2) return "Amesos2 KLU2";
   if (type_ == SolverType::mumps) return "MUMPS";
+  if (type_ == SolverType::umfpack) return "SuiteSparse UMFPACK";
   return "Belos " + krylov_name() + " + " + preconditioner_name(prec_type_);
 }
 
@@ -174,8 +177,8 @@ SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Ve
   if (type_ == SolverType::klu2) {
     klu2_.solve(A, b, x);
     message = "Amesos2 KLU2 direct solve";
-  } else if (type_ == SolverType::mumps) {
-    mumps_solve(A, b, x, st, message);  // to tol_: exact like a direct solve
+  } else if (type_ == SolverType::mumps || type_ == SolverType::umfpack) {
+    direct_solve(A, b, x, st, message);  // to tol_: exact like a direct solve
   } else {
     // 0: the last preconditioner as it is; 1: refreshed for A; 2: built fresh for A. A reused
     // one that is slow or fails moves up a level and the solve is repeated.

@@ -12,19 +12,21 @@ void set_linear(Teuchos::ParameterList& pl) {
   set_choice(pl, "type", "gmres",
              "Linear solver: gmres; cg only for a symmetric Newton matrix (the midpoint integrator "
              "without frictionless contact; otherwise the run warns); klu2, direct, one rank only; "
-             "mumps, direct, any number of ranks.",
-             {"gmres", "cg", "klu2", "mumps"},
+             "mumps, direct, any number of ranks; umfpack, direct, one rank.",
+             {"gmres", "cg", "klu2", "mumps", "umfpack"},
              {"Belos GMRES (iterative)",
               "Belos conjugate gradients (iterative; only for a symmetric Newton matrix: the "
               "mid-point integrator without frictionless contact, otherwise the run warns)",
               "Amesos2 KLU2 (direct, one rank)",
               "MUMPS (direct, any number of ranks; its factors are reused as GMRES's "
-              "preconditioner while they work, see factorisation reuse rate)"},
+              "preconditioner while they work, see factorisation reuse rate)",
+              "SuiteSparse UMFPACK (direct, one rank; factors reused like mumps', and cheaper "
+              "to apply on the examples' systems, see perf/README.md)"},
              std::vector<SolverType>{SolverType::gmres, SolverType::cg, SolverType::klu2,
-                                     SolverType::mumps});
+                                     SolverType::mumps, SolverType::umfpack});
   set_choice(
       pl, "preconditioner", "auto",
-      "Preconditioner of the iterative solvers (ignored by klu2 and mumps); auto: ilu "
+      "Preconditioner of the iterative solvers (ignored by klu2, mumps and umfpack); auto: ilu "
       "or muelu by the system's size (Solver/Linear/multigrid from equations).",
       {"auto", "ilu", "schwarz", "muelu", "none"},
       {"muelu from Solver/Linear/multigrid from equations on (if built with MueLu), else ilu",
@@ -46,7 +48,7 @@ void set_linear(Teuchos::ParameterList& pl) {
   pl.set("reuse preconditioner", true,
          "Reuse the preconditioner setup across solves where possible.");
   pl.set("factorisation reuse rate", 0.1,
-         "mumps: the factors of an earlier matrix stay GMRES's preconditioner while GMRES "
+         "mumps, umfpack: the factors of an earlier matrix stay GMRES's preconditioner while GMRES "
          "reduces the residual by at least this factor per iteration: it gets the iterations "
          "this rate needs to reach Solver/Linear/tolerance (a direct solve is exact, so the "
          "adaptive linear tolerance is not used), and if it has not converged then, the matrix "

@@ -70,7 +70,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
                  last_.converged ? "converged" : "failed", last_.floor, last_.linear_iterations,
                  last_.extra_assemblies);
     for (double r : last_.residuals) std::fprintf(stderr, " %.2e", r);
-    std::fprintf(stderr, "\n");
+    std::fprintf(stderr, "%s%s\n", last_.failure.empty() ? "" : ": ", last_.failure.c_str());
   }
   return last_;
 }

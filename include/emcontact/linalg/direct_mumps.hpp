@@ -7,36 +7,27 @@
 // can serve as a preconditioner (as_operator).
 #include <memory>
 
-#include "emcontact/types.hpp"
+#include "emcontact/linalg/direct_solver.hpp"
 
 namespace emc::linalg {
 
-class DirectMumps {
+class DirectMumps : public DirectSolver {
  public:
   explicit DirectMumps(const Teuchos::RCP<const Comm>& comm);
-  ~DirectMumps();
+  ~DirectMumps() override;
   DirectMumps(const DirectMumps&) = delete;
   DirectMumps& operator=(const DirectMumps&) = delete;
 
-  /// Numeric factorisation of A, after a new analysis if A's structure differs from the one
-  /// analysed last (the same graph object, or equal row pointers and global columns on every
-  /// rank). The rows of A must be numbered 0..N-1 (in any distribution). Throws
-  /// LinearSolveError on a MUMPS error (INFOG codes and their meaning).
-  void factor(const Teuchos::RCP<const Matrix>& A);
-  /// x = (LU)^-1 b with the last factors (collective).
-  void solve(const Vector& b, Vector& x);
-  /// The current factors as a Tpetra operator ((LU)^-1), e.g. a preconditioner of a later
-  /// matrix; it refers to this object and is valid while this object lives.
-  Teuchos::RCP<Operator> as_operator();
-  bool factored() const;
-
-  int analyses() const { return analyses_; }
-  int factorisations() const { return factorisations_; }
+  /// The same structure: the same graph object, or equal row pointers and global columns on
+  /// every rank (in any distribution of the rows). Errors: INFOG codes and their meaning.
+  void factor(const Teuchos::RCP<const Matrix>& A) override;
+  void solve(const Vector& b, Vector& x) override;
+  bool factored() const override;
+  const char* name() const override { return "MUMPS"; }
 
  private:
   struct State;
   std::shared_ptr<State> s_;
-  int analyses_ = 0, factorisations_ = 0;
 
   bool same_structure(const Teuchos::RCP<const Matrix>& A);
   void analyse(const Teuchos::RCP<const Matrix>& A);

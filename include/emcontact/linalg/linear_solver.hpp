@@ -1,11 +1,11 @@
 #pragma once
 // The linear solver behind one interface: Belos (GMRES, or CG for symmetric matrices) with an
 // Ifpack2 (ILU, additive Schwarz) or MueLu preconditioner on any number of ranks, Amesos2
-// KLU2 on one rank, or MUMPS on any number of ranks. The preconditioner is reused across Newton
-// iterations and steps while the iteration count stays near the count of a fresh one. After every
-// solve the true residual is checked; a failure, or an exception of Belos, Ifpack2, MueLu or
-// Amesos2 (a NaN in the matrix), throws LinearSolveError with the solver's own message on one line,
-// which the time stepper treats as a failed step (dt halved).
+// KLU2 or SuiteSparse UMFPACK on one rank, or MUMPS on any number of ranks. The preconditioner is
+// reused across Newton iterations and steps while the iteration count stays near the count of a
+// fresh one. After every solve the true residual is checked; a failure, or an exception of Belos,
+// Ifpack2, MueLu or Amesos2 (a NaN in the matrix), throws LinearSolveError with the solver's own
+// message on one line, which the time stepper treats as a failed step (dt halved).
 #include <Teuchos_ParameterList.hpp>
 #include <memory>
 #include <string>
@@ -17,7 +17,7 @@
 
 namespace emc::linalg {
 
-class DirectMumps;
+class DirectSolver;
 
 class LinearSolveError : public RunError {
  public:
@@ -85,8 +85,11 @@ class LinearSolver {
   /// solve, or with `multigrid reuse = refresh` the multigrid hierarchy's coarse operators and
   /// smoothers recomputed for it (its aggregates and prolongators kept).
   void matrix_changed();
-  /// True for a direct solver (klu2, mumps): it keeps its analysis while the graph is the same.
-  bool direct() const { return type_ == SolverType::klu2 || type_ == SolverType::mumps; }
+  /// True for a direct solver (klu2, mumps, umfpack): it keeps its analysis while the graph is
+  /// the same.
+  bool direct() const {
+    return type_ == SolverType::klu2 || type_ == SolverType::mumps || type_ == SolverType::umfpack;
+  }
   /// True for a solver that assumes a symmetric matrix (Solver/Linear/type = cg).
   bool assumes_symmetric() const { return type_ == SolverType::cg; }
   /// True when the preconditioner is built from node positions (multigrid's rigid-body modes).
@@ -109,7 +112,7 @@ class LinearSolver {
   Teuchos::ParameterList belos_, ifpack2_, muelu_;
   Teuchos::RCP<Operator> prec_;
   DirectKlu2 klu2_;
-  std::shared_ptr<DirectMumps> mumps_;  ///< type mumps; prec_ is then its factors' inverse
+  std::shared_ptr<DirectSolver> direct_;  ///< mumps, umfpack; prec_ is then its factors' inverse
   double reuse_rate_;
   double fresh_rate_ = 0;           ///< Krylov iterations per decade of a fresh preconditioner
   NullSpace null_space_;            ///< multigrid near null space
@@ -128,8 +131,9 @@ class LinearSolver {
   Teuchos::RCP<Teuchos::ParameterList> belos_parameters(double tol) const;
   /// Belos' name of the iterative solver: "CG" or "GMRES".
   std::string krylov_name() const;
-  void mumps_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, SolveStats& st,
-                   std::string& message);
+  /// mumps, umfpack: a new factorisation, or GMRES on the last factors while they work.
+  void direct_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, SolveStats& st,
+                    std::string& message);
   /// Builds (level 2) or refreshes (level 1) the preconditioner for A.
   void setup_preconditioner(const Teuchos::RCP<Matrix>& A, int level);
   void build_preconditioner(const Teuchos::RCP<Matrix>& A,

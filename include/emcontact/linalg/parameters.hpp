@@ -8,14 +8,14 @@ namespace emc::linalg {
 /// The values of the choices of `Solver/Linear` (their validators', read with
 /// Teuchos::getIntegralValue): `type`, `multigrid near null space`, `multigrid positions`,
 /// `multigrid reuse`, `preconditioner` (`automatic` is `auto`: ilu or muelu by size).
-enum class SolverType { gmres, cg, klu2, mumps };
+enum class SolverType { gmres, cg, klu2, mumps, umfpack };
 enum class Preconditioner { automatic, ilu, schwarz, muelu, none };
 enum class NullSpace { rigid_body_modes, translations };
 enum class ModePositions { current, reference };
 enum class MultigridReuse { refresh, rebuild };
 
 /// Valid parameters of `Solver/Linear` (read by LinearSolver): `type` (gmres | cg | klu2 |
-/// mumps), `preconditioner` (auto | ilu | schwarz | muelu | none), `tolerance`, `max
+/// mumps | umfpack), `preconditioner` (auto | ilu | schwarz | muelu | none), `tolerance`, `max
 /// iterations`, `reuse preconditioner`, `factorisation reuse rate`, the multigrid choices,
 /// `residual check factor`, and the pass-through sublists `Belos`, `Ifpack2`, `MueLu` whose
 /// contents go unchanged to Trilinos.

@@ -1,0 +1,36 @@
+#pragma once
+// A sparse direct solver that keeps its analysis while the matrix structure stays the same and
+// its numeric factors until asked to factor anew, so that the factors of an earlier matrix can
+// serve as a preconditioner (as_operator). Behind it: MUMPS (any number of ranks) and UMFPACK
+// (one rank); LinearSolver decides when to factor (src/linalg/direct_solve.cpp).
+#include "emcontact/types.hpp"
+
+namespace emc::linalg {
+
+class DirectSolver {
+ public:
+  virtual ~DirectSolver() = default;
+
+  /// Numeric factorisation of A, after a new analysis if A's structure differs from the one
+  /// analysed last. The rows of A must be numbered 0..N-1. Throws LinearSolveError on a
+  /// failure of the package (its code and what it means).
+  virtual void factor(const Teuchos::RCP<const Matrix>& A) = 0;
+  /// x = (LU)^-1 b with the last factors (collective).
+  virtual void solve(const Vector& b, Vector& x) = 0;
+  virtual bool factored() const = 0;
+  /// The package's name ("MUMPS", "UMFPACK").
+  virtual const char* name() const = 0;
+
+  /// The current factors as a Tpetra operator ((LU)^-1), e.g. a preconditioner of a later
+  /// matrix; it refers to this object and is valid while this object lives.
+  Teuchos::RCP<Operator> as_operator();
+
+  int analyses() const { return analyses_; }
+  int factorisations() const { return factorisations_; }
+
+ protected:
+  Teuchos::RCP<const Map> rows_;  ///< the row map of the matrix analysed last
+  int analyses_ = 0, factorisations_ = 0;
+};
+
+}  // namespace emc::linalg
