@@ -15,7 +15,6 @@
 #include <cstdlib>
 
 #include "emcontact/linalg/direct_mumps.hpp"
-#include "emcontact/linalg/direct_umfpack.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 
 namespace emc::linalg {
@@ -46,47 +45,45 @@ int capped_gmres(const RCP<Matrix>& A, const RCP<Operator>& M, const Vector& b, 
   return solver->getNumIters();
 }
 
-/// capped_gmres, then up to two corrections solved for the true residual b - A x: Belos tests
-/// the residual GMRES updates, which drifts from the true one when the factors' solves are
-/// inexact on an ill-conditioned matrix (UMFPACK on the hollow cylinders near t = 0.18 s:
-/// "converged" in 2 iterations with a true residual of 3e-7 against 1e-10).
-/// Fresh factors (`fresh`) are refined even when Belos reports a loss of accuracy; reused ones
-/// that did not converge are factored anew instead.
-int refined_gmres(const RCP<Matrix>& A, const RCP<Operator>& M, const Vector& b, Vector& x,
-                  double tol, int cap, bool fresh, bool& converged) {
+}  // namespace
+
+int gmres_on_factors(const RCP<Matrix>& A, const RCP<Operator>& M, const Vector& b, Vector& x,
+                     double tol, int cap, bool refine_unconverged, bool& converged,
+                     double& true_residual) {
   int its = capped_gmres(A, M, b, x, tol, cap, converged);
-  if (!converged && !fresh) return its;
+  true_residual = -1;
+  if (!converged && !refine_unconverged) return its;
   Vector r(b.getMap()), dx(b.getMap());
   const double bn = b.norm2();
-  for (int round = 0; round < 2; ++round) {
+  auto residual = [&] {
     A->apply(x, r);
     r.update(1.0, b, -1.0);
-    const double rn = r.norm2();
-    if (!(rn > tol * bn)) break;
+    return r.norm2();
+  };
+  double rn = residual();
+  for (int round = 0; round < 2 && rn > tol * bn; ++round) {
     its += capped_gmres(A, M, r, dx, std::min(0.5, tol * bn / rn), cap, converged);
     x.update(1.0, dx, 1.0);
+    rn = residual();
   }
+  converged = rn <= tol * bn;
+  true_residual = bn > 0 ? rn / bn : rn;
   return its;
 }
 
-}  // namespace
-
 void LinearSolver::direct_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, SolveStats& st,
                                 std::string& message) {
-  if (!direct_) {
-    if (type_ == SolverType::umfpack)
-      direct_ = std::make_shared<DirectUmfpack>(A->getComm());
-    else
-      direct_ = std::make_shared<DirectMumps>(A->getComm());
-  }
-  const double tol = tol_;  // see above
-  constexpr int fresh_cap = 5;
+  // umfpack's is made by the constructor (it refuses 2+ ranks there); MUMPS's initialisation
+  // waits for the first solve
+  if (!direct_) direct_ = std::make_shared<DirectMumps>(A->getComm());
+  const double tol = tol_;      // see above
+  constexpr int fresh_cap = 5;  // fresh factors: 1 iteration, a few where they are inexact
   if (reuse_ && reuse_rate_ > 0 && !prec_.is_null()) {
     // the iterations the rate needs (1e-9: log(1e-10) / log(0.1) must give 10, not 11)
     const int cap =
         std::max(1, static_cast<int>(std::ceil(std::log(tol) / std::log(reuse_rate_) - 1e-9)));
     bool converged = false;
-    st.iterations = refined_gmres(A, prec_, b, x, tol, cap, false, converged);
+    st.iterations = gmres_on_factors(A, prec_, b, x, tol, cap, false, converged, st.true_residual);
     static const bool trace = std::getenv("EMC_MUMPS_TRACE") != nullptr;
     if (trace && A->getComm()->getRank() == 0)  // debugging aid, as in DirectMumps::factor
       std::fprintf(stderr, "%s: reused factors, %d GMRES iterations (at most %d), %s\n",
@@ -104,7 +101,8 @@ void LinearSolver::direct_solve(const RCP<Matrix>& A, const Vector& b, Vector& x
   // a few (iterative refinement) where the pivoting left them less accurate than that on an
   // ill-conditioned matrix (UMFPACK on the hollow cylinders: a plain solve left 1.8e-8)
   bool converged = false;
-  st.iterations = refined_gmres(A, prec_, b, x, tol, fresh_cap, true, converged);
+  st.iterations =
+      gmres_on_factors(A, prec_, b, x, tol, fresh_cap, true, converged, st.true_residual);
   message = std::string(direct_->name()) + " direct solve, " + std::to_string(st.iterations) +
             " GMRES iterations on its factors";
 }

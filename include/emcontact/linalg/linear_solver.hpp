@@ -26,7 +26,7 @@ class LinearSolveError : public RunError {
 
 struct SolveStats {
   int iterations = 0;
-  double true_residual = 0;  ///< ||b - A x|| / ||b|| after the solve
+  double true_residual = -1;  ///< ||b - A x|| / ||b|| after the solve (-1: not yet known)
   bool fresh_preconditioner = false;
 };
 
