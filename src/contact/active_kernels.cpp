@@ -89,7 +89,10 @@ void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind)
       });
 }
 
-double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d) {
+namespace {
+
+template <class X1>
+double stick_corrections_at(Refs refs, Positions x0, const X1 x1, Values3 d) {
   double moved = 0;
   Kokkos::parallel_reduce(
       "emcontact::contact::stick_corrections", Policy(0, count(refs)),
@@ -111,6 +114,16 @@ double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d) {
       },
       Kokkos::Max<double>(moved));
   return moved;
+}
+
+}  // namespace
+
+double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d) {
+  return stick_corrections_at(refs, x0, x1, d);
+}
+
+double stick_corrections(Refs refs, Positions x0, const NodePositions& x1, Values3 d) {
+  return stick_corrections_at(refs, x0, x1, d);
 }
 
 void add_to_slaves(Refs refs, Values3 d, OwnedValuesRW u) {

@@ -32,13 +32,20 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     x0 = contact_.positions(u0);
     x0_nodes = contact_.nodes().builds();
   };
+  // docs/THEORY.md §8: the step's sweeps start at u0; `swept`: u1 is the one of the last
+  // selection, whose facets in reach then stand (only the chains of the new set are closed)
+  const auto sweep = contact_.sweep_from(u0);
+  bool swept = false;
   bool warm = false;      // §6.1-§6.2: a re-solve starts from the last solution
   bool search = search_;  // §6.9: search the set, then solve it to the full tolerance
   for (;;) {
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
     ActiveIndex index = contact_.gather(trial);
-    contact_.select(u0, u1, index);
+    if (swept)
+      contact_.reselect(index);
+    else
+      contact_.select(sweep, u1, index);
     at_u0();
     constraints_.set_start_positions(x0);
     const bool empty = contact_.global_count(static_cast<int>(trial.size())) == 0;
@@ -49,12 +56,14 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       changed = constraints_.use(&trial, std::move(index));
     }
     g = solve(changed, empty, warm, search);
+    swept = false;  // u1 moved
     warm = g != nullptr;
     if (!g) {
       // docs/THEORY.md §11.4: sliding entries whose slip turned back had no sliding solution:
       // they stick, and the step is solved again
       u1.assign(u0);
-      contact_.select(u0, u1, constraints_.index());
+      contact_.select(sweep, u1, constraints_.index());
+      swept = true;
       at_u0();
       const LawState s{contact_, constraints_.index(), x0, x0, {}};
       int back = 0;
@@ -63,7 +72,8 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       ++out.stats.resolves;
       continue;
     }
-    contact_.select(u0, u1, constraints_.index());  // the exact sweep of the solution
+    contact_.select(sweep, u1, constraints_.index());  // the exact sweep of the solution
+    swept = true;
     at_u0();
     x1 = contact_.positions(u1);
     auto fresh = contact_.detect(x0, x1, trial);

@@ -75,7 +75,7 @@ void FullStick::start(const LawState& s, std::vector<Active>& active, Vector& u1
   const Refs refs = contact.refs(sticking);
   Values3 d("emc::stick_corrections", sticking.size());
   for (int sweep = 0; sweep < 8; ++sweep) {
-    const double moved = stick_corrections(refs, s.x0, contact.positions(u1), d);
+    const double moved = stick_corrections(refs, s.x0, contact.nodes().lazy_positions(u1), d);
     add_to_slaves(refs, d, u1.getLocalViewDevice(Tpetra::Access::ReadWrite));
     double all = 0;
     Teuchos::reduceAll(*contact.disc_comm(), Teuchos::REDUCE_MAX, 1, &moved, &all);

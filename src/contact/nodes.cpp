@@ -40,23 +40,21 @@ void grow(double* box, const double x[3]) {
   }
 }
 
-/// The box of the points X(k) + u0(dof(k)) and X(k) + u1(dof(k)) over k: one reduction of
-/// the six bounds (a functor: device code is never in a private member).
-struct SweepBox {
+/// The box of the points X(k) + u(dof(k)) over k: one reduction of the six bounds (a functor:
+/// device code is never in a private member).
+struct SlaveBox {
   struct value_type {
     double lo[3], hi[3];
   };
   Kokkos::View<const double* [3], ExecSpace> X;
   Kokkos::View<const LO* [3], ExecSpace> dof;
-  Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> v0, v1;
+  Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> v;
 
   KOKKOS_INLINE_FUNCTION void operator()(const int k, value_type& b) const {
     for (int c = 0; c < 3; ++c) {
-      const double a = X(k, c) + v0(dof(k, c), 0), e = X(k, c) + v1(dof(k, c), 0);
+      const double a = X(k, c) + v(dof(k, c), 0);
       b.lo[c] = a < b.lo[c] ? a : b.lo[c];
-      b.lo[c] = e < b.lo[c] ? e : b.lo[c];
       b.hi[c] = a > b.hi[c] ? a : b.hi[c];
-      b.hi[c] = e > b.hi[c] ? e : b.hi[c];
     }
   }
   KOKKOS_INLINE_FUNCTION void init(value_type& b) const {
@@ -73,12 +71,11 @@ struct SweepBox {
   }
 };
 
-void sweep_box(const Kokkos::View<const double* [3], ExecSpace> X,
-               const Kokkos::View<const LO* [3], ExecSpace> dof, const Vector& u0, const Vector& u1,
-               double* box) {
-  const SweepBox f{X, dof, u0.getLocalViewDevice(Tpetra::Access::ReadOnly),
-                   u1.getLocalViewDevice(Tpetra::Access::ReadOnly)};
-  SweepBox::value_type b;
+/// box (lo, hi) = the box of X(k) + u(dof(k)) over k (empty if there is no k).
+void slave_box(const Kokkos::View<const double* [3], ExecSpace> X,
+               const Kokkos::View<const LO* [3], ExecSpace> dof, const Vector& u, double* box) {
+  const SlaveBox f{X, dof, u.getLocalViewDevice(Tpetra::Access::ReadOnly)};
+  SlaveBox::value_type b;
   Kokkos::parallel_reduce("emcontact::contact::slave_box",
                           Kokkos::RangePolicy<ExecSpace>(0, X.extent(0)), f, b);
   for (int c = 0; c < 3; ++c) {
@@ -94,23 +91,6 @@ void gather_ids(const Kokkos::View<const int*, ExecSpace> map,
   Kokkos::parallel_for(
       "emcontact::contact::to_local", Kokkos::RangePolicy<ExecSpace>(0, in.extent(0)),
       KOKKOS_LAMBDA(const int k) { out(k) = map(in(k)); });
-}
-
-/// docs/THEORY.md §8: x(l) = X(l) + u(l) over the contact nodes l: u from the owned vector v (src
-/// >= 0) or the imported one r (src = -1 - its row), zero for the first rigid node nd and after.
-void contact_positions(const Kokkos::View<const double* [3], ExecSpace> X,
-                       const Kokkos::View<const LO* [3], ExecSpace> src, const int nd,
-                       const Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> v,
-                       const Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> r,
-                       Positions x) {
-  Kokkos::parallel_for(
-      "emcontact::contact::positions", Kokkos::RangePolicy<ExecSpace>(0, X.extent(0)),
-      KOKKOS_LAMBDA(const int l) {
-        for (int c = 0; c < 3; ++c) {
-          const LO k = l < nd ? src(l, c) : 0;
-          x(l, c) = X(l, c) + (l >= nd ? 0.0 : k >= 0 ? v(k, 0) : r(-1 - k, 0));
-        }
-      });
 }
 
 }  // namespace
@@ -195,15 +175,30 @@ void ContactNodes::slave_box_data(const std::vector<int>& mine) {
   slave_dofs_.push_back(dof);
 }
 
-// The box of my slave nodes of each pair over the step (x at u0 and at u1), grown by the pair's
-// max penetration and mean facet size (the reach of Newton's iterates and of §5 step 2).
-std::vector<std::vector<double>> ContactNodes::slave_boxes(const Vector& u0,
+ContactNodes::Sweep ContactNodes::sweep_from(const Vector& u0) const {
+  Sweep s;
+  s.u0 = &u0;
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    std::array<double, 6> b = {kHuge, kHuge, kHuge, -kHuge, -kHuge, -kHuge};
+    if (!my_slaves_[p].empty()) slave_box(slave_X_[p], slave_dofs_[p], u0, b.data());
+    s.slaves_at_u0.push_back(b);
+  }
+  return s;
+}
+
+// The box of my slave nodes of each pair over the step (x at u0 and at u1: the union of the two
+// boxes), grown by the pair's max penetration and mean facet size (the reach of Newton's
+// iterates and of §5 step 2).
+std::vector<std::vector<double>> ContactNodes::slave_boxes(const Sweep& from,
                                                            const Vector& u1) const {
   std::vector<std::vector<double>> boxes;
   for (std::size_t p = 0; p < pairs_.size(); ++p) {
-    std::vector<double> b = {kHuge, kHuge, kHuge, -kHuge, -kHuge, -kHuge};
+    std::vector<double> b(from.slaves_at_u0[p].begin(), from.slaves_at_u0[p].end());
     if (!my_slaves_[p].empty()) {
-      sweep_box(slave_X_[p], slave_dofs_[p], u0, u1, b.data());
+      double b1[6];
+      slave_box(slave_X_[p], slave_dofs_[p], u1, b1);
+      grow(b.data(), b1);
+      grow(b.data(), b1 + 3);
       const double reach = pairs_[p].dmax + pairs_[p].edge;
       for (int i = 0; i < 3; ++i) {
         b[i] -= reach;
@@ -217,11 +212,12 @@ std::vector<std::vector<double>> ContactNodes::slave_boxes(const Vector& u0,
 
 // Each rank tests the deformable facets its overlap map holds against every rank's slave boxes
 // and sends their ids; rigid facets (never moving, known everywhere) are tested locally.
-std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Vector& u0,
+std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Sweep& from,
                                                             const Vector& u1) const {
+  const Vector& u0 = *from.u0;
   const auto& m = disc_.model();
   const int np = static_cast<int>(pairs_.size()), nr = disc_.comm()->getSize();
-  const auto mine = slave_boxes(u0, u1);
+  const auto mine = slave_boxes(from, u1);
   std::vector<double> flat;
   for (const auto& b : mine) flat.insert(flat.end(), b.begin(), b.end());
   const auto all = allgather(*disc_.comm(), flat);  // [rank][pair][6]
@@ -301,11 +297,25 @@ void ContactNodes::close_chains(std::vector<std::vector<int>>& need,
   }
 }
 
-void ContactNodes::select(const Vector& u0, const Vector& u1, const ActiveIndex& index) {
+void ContactNodes::select(const Sweep& from, const Vector& u1, const ActiveIndex& index) {
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: node selection");
   Teuchos::TimeMonitor tm(*timer);
-  auto need = facets_in_reach(u0, u1);
+  in_reach_ = facets_in_reach(from, u1);
+  auto need = in_reach_;
   close_chains(need, index);
+  select_closed(std::move(need));
+}
+
+void ContactNodes::reselect(const ActiveIndex& index) {
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: node selection");
+  Teuchos::TimeMonitor tm(*timer);
+  auto need = in_reach_;
+  close_chains(need, index);
+  select_closed(std::move(need));
+}
+
+// Builds the contact nodes of the facets `need` unless every rank's are those of the last build.
+void ContactNodes::select_closed(std::vector<std::vector<int>> need) {
   ++traffic_.selections;
   // the same facets on every rank: the nodes, their import and the local numbering stay
   int changed = need != selected_ ? 1 : 0, any = 0;
@@ -405,19 +415,33 @@ void ContactNodes::build_slaves(std::size_t p, Kokkos::View<const int*, ExecSpac
              Kokkos::View<int*, ExecSpace>(ls.tri.data(), 3 * ls.tri.extent(0)));
 }
 
+// Not initialized: every caller writes every entry (positions, midpoint).
 Positions ContactNodes::new_positions(const char* label) const {
-  return Positions(std::string(label), size());
+  return Positions(Kokkos::ViewAllocateWithoutInitializing(label), size());
+}
+
+// docs/THEORY.md §8: x(l) = X(l) + u(l) over the contact nodes l.
+void fill(const NodePositions& p, Positions x) {
+  Kokkos::parallel_for(
+      "emcontact::contact::positions", Kokkos::RangePolicy<ExecSpace>(0, p.size()),
+      KOKKOS_LAMBDA(const int l) {
+        for (int c = 0; c < 3; ++c) x(l, c) = p(l, c);
+      });
+}
+
+NodePositions ContactNodes::lazy_positions(const Vector& u) const {
+  NodePositions p{X_, src_, deformable_, u.getLocalViewDevice(Tpetra::Access::ReadOnly), {}};
+  if (!imports_) return p;  // no rank has remote contact nodes (one rank): nothing to import
+  Vector um(map_);          // the remote dofs; collective
+  um.doImport(u, *import_, Tpetra::INSERT);
+  ++traffic_.imports;
+  traffic_.bytes_imported += static_cast<long long>(map_->getNodeNumElements()) * sizeof(double);
+  p.r = um.getLocalViewDevice(Tpetra::Access::ReadOnly);  // a View: it keeps the values alive
+  return p;
 }
 
 void ContactNodes::positions(const Vector& u, Positions x) const {
-  Vector um(map_);  // the remote dofs (none on one rank)
-  if (imports_) {   // collective: some rank has remote contact nodes
-    um.doImport(u, *import_, Tpetra::INSERT);
-    ++traffic_.imports;
-    traffic_.bytes_imported += static_cast<long long>(map_->getNodeNumElements()) * sizeof(double);
-  }
-  contact_positions(X_, src_, deformable_, u.getLocalViewDevice(Tpetra::Access::ReadOnly),
-                    um.getLocalViewDevice(Tpetra::Access::ReadOnly), x);
+  fill(lazy_positions(u), x);
 }
 
 Positions::HostMirror ContactNodes::host_positions(const Vector& u) const {

@@ -63,6 +63,8 @@ void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind)
 /// x_{s,n} where the masters did not move), or N x_{m,n+1} for a closing entry; returns the
 /// largest |d| in units of the facet size.
 double stick_corrections(Refs refs, Positions x0, Positions x1, Values3 d);
+/// The same with x1 read where needed (the same bits: NodePositions and fill).
+double stick_corrections(Refs refs, Positions x0, const NodePositions& x1, Values3 d);
 
 /// u(a.dof[c]) += d(k, c) for every entry k (the slaves' own dofs in an owned vector's values).
 using OwnedValuesRW = Kokkos::View<double**, Kokkos::LayoutLeft, ExecSpace>;

@@ -42,6 +42,12 @@ class Contact {
   void select(const Vector& u0, const Vector& u1, const ActiveIndex& index) const {
     nodes_.select(u0, u1, index);
   }
+  /// The same for the sweeps of one step from u0 (ContactNodes::Sweep), and for the last sweep.
+  ContactNodes::Sweep sweep_from(const Vector& u0) const { return nodes_.sweep_from(u0); }
+  void select(const ContactNodes::Sweep& from, const Vector& u1, const ActiveIndex& index) const {
+    nodes_.select(from, u1, index);
+  }
+  void reselect(const ActiveIndex& index) const { nodes_.reselect(index); }
   /// Positions X + u of the contact nodes (collective).
   Positions positions(const Vector& u) const;
 

@@ -5,6 +5,7 @@
 // rank's contact memory and traffic grow with its share of the contact surface, not the model.
 #include <Kokkos_Core.hpp>
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -20,6 +21,25 @@ namespace emc::contact {
 
 /// Positions of the contact nodes (contact-node index, coordinate).
 using Positions = Kokkos::View<double* [3], ExecSpace>;
+
+/// The positions x = X + u of the contact nodes computed where they are read (x(l, c)), for a
+/// kernel that reads a few of them: X(l) the reference (or rigid) position; for l < nd, u's
+/// component c at src(l, c) of the owned values v (src >= 0) or at -1 - src of the imported
+/// values r; no displacement for l >= nd (rigid). fill() writes the same bits into Positions.
+struct NodePositions {
+  Kokkos::View<const double* [3], ExecSpace> X;
+  Kokkos::View<const LO* [3], ExecSpace> src;
+  int nd = 0;
+  Kokkos::View<const double**, Kokkos::LayoutLeft, ExecSpace> v, r;
+  KOKKOS_INLINE_FUNCTION double operator()(const int l, const int c) const {
+    const LO k = l < nd ? src(l, c) : 0;
+    return X(l, c) + (l >= nd ? 0.0 : k >= 0 ? v(k, 0) : r(-1 - k, 0));
+  }
+  int size() const { return static_cast<int>(X.extent(0)); }
+};
+
+/// x(l, c) = p(l, c) for every contact node (a labelled kernel).
+void fill(const NodePositions& p, Positions x);
 
 /// A pair's master facets held by this rank, by ascending facet id.
 struct LocalFacets {
@@ -78,13 +98,29 @@ class ContactNodes {
  public:
   ContactNodes(const fem::Discretization& disc, const std::vector<Pair>& pairs);
 
+  /// The start of a step's sweeps, which its selections share: u_n and, per pair, the box of my
+  /// slave nodes at u_n (lo, hi).
+  struct Sweep {
+    const Vector* u0 = nullptr;
+    std::vector<std::array<double, 6>> slaves_at_u0;
+  };
+  Sweep sweep_from(const Vector& u0) const;
   /// docs/THEORY.md §8: selects the facets whose sweep from u0 to u1 meets the sweep of my slave
   /// nodes grown by the pair's max penetration and facet size, and the facets of the entries of
   /// `index` whose slave is one of my contact nodes (chains, until closed) (collective).
-  void select(const Vector& u0, const Vector& u1, const ActiveIndex& index);
+  void select(const Sweep& from, const Vector& u1, const ActiveIndex& index);
+  void select(const Vector& u0, const Vector& u1, const ActiveIndex& index) {
+    select(sweep_from(u0), u1, index);
+  }
+  /// select() for the sweep of the last selection (u0 and u1 unchanged since): the facets in
+  /// its reach stay, the chains of `index` are closed anew (collective).
+  void reselect(const ActiveIndex& index);
 
   /// x = X + u of my contact nodes; u an owned vector (collective: imports the remote ones).
   void positions(const Vector& u, Positions x) const;
+  /// The same, computed where a kernel reads them (collective: imports the remote ones; the
+  /// result reads u's values, so it follows u until u is reallocated).
+  NodePositions lazy_positions(const Vector& u) const;
   Positions new_positions(const char* label) const;
   /// Host copy of the positions at u (collective).
   Positions::HostMirror host_positions(const Vector& u) const;
@@ -128,9 +164,12 @@ class ContactNodes {
   mutable NodeTraffic traffic_;
   int builds_ = 0;
 
+  std::vector<std::vector<int>> in_reach_;  ///< per pair: the facets in reach at the last select
+
   void slave_box_data(const std::vector<int>& mine);
-  std::vector<std::vector<double>> slave_boxes(const Vector& u0, const Vector& u1) const;
-  std::vector<std::vector<int>> facets_in_reach(const Vector& u0, const Vector& u1) const;
+  std::vector<std::vector<double>> slave_boxes(const Sweep& from, const Vector& u1) const;
+  std::vector<std::vector<int>> facets_in_reach(const Sweep& from, const Vector& u1) const;
+  void select_closed(std::vector<std::vector<int>> need);
   void close_chains(std::vector<std::vector<int>>& need, const ActiveIndex& index) const;
   void build(const std::vector<std::vector<int>>& need);
   void build_slaves(std::size_t pair, Kokkos::View<const int*, ExecSpace> side_local);

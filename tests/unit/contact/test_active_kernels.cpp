@@ -187,6 +187,55 @@ TEST(ActiveKernels, StickCorrectionsEqualAHostLoop) {
   EXPECT_EQ(moved, mx);
 }
 
+// docs/THEORY.md §8: positions read where a kernel needs them (NodePositions: owned, imported
+// and rigid nodes) are the bits fill() writes, and the start iterate's corrections computed from
+// either are the same.
+TEST(ActiveKernels, NodePositionsAreTheFilledPositions) {
+  Entries e(kEntries);
+  const int nodes = 4 * e.n, nd = nodes - 7;  // the last 7 contact nodes rigid
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Kokkos::View<double* [3], emc::ExecSpace> X("X", nodes);
+  Kokkos::View<emc::LO* [3], emc::ExecSpace> src("src", nodes);
+  Kokkos::View<double**, Kokkos::LayoutLeft, emc::ExecSpace> v("v", 3 * nodes, 1), r("r", 64, 1);
+  auto Xh = Kokkos::create_mirror_view(X);
+  auto sh = Kokkos::create_mirror_view(src);
+  auto vh = Kokkos::create_mirror_view(v);
+  auto rh = Kokkos::create_mirror_view(r);
+  const auto x1 = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), e.x1);
+  for (int j = 0; j < 64; ++j) rh(j, 0) = 0.01 * u(rng);
+  for (int l = 0; l < nodes; ++l)
+    for (int c = 0; c < 3; ++c) {
+      vh(3 * l + c, 0) = 0.01 * u(rng);
+      const bool remote = l % 5 == 1;  // imported from another rank: one of r's values
+      sh(l, c) = remote ? -1 - (3 * l + c) % 64 : 3 * nodes - 1 - (3 * l + c);  // out of order
+      Xh(l, c) = x1(l, c);
+    }
+  Kokkos::deep_copy(X, Xh);
+  Kokkos::deep_copy(src, sh);
+  Kokkos::deep_copy(v, vh);
+  Kokkos::deep_copy(r, rh);
+  const c::NodePositions p{X, src, nd, v, r};
+  c::Positions x("x", nodes);
+  c::fill(p, x);
+  const auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
+  for (int l = 0; l < nodes; ++l)
+    for (int c = 0; c < 3; ++c) {
+      const int k = sh(l, c);
+      const double ul = l >= nd ? 0.0 : k >= 0 ? vh(k, 0) : rh(-1 - k, 0);
+      EXPECT_EQ(xh(l, c), Xh(l, c) + ul) << "node " << l;
+    }
+  c::Values3 d_lazy("d_lazy", e.n), d_filled("d_filled", e.n);
+  const double m_lazy = c::stick_corrections(e.refs, e.x0, p, d_lazy);
+  const double m_filled = c::stick_corrections(e.refs, e.x0, x, d_filled);
+  EXPECT_EQ(m_lazy, m_filled);
+  EXPECT_GT(m_lazy, 0);
+  const auto a = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d_lazy);
+  const auto b = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d_filled);
+  for (int q = 0; q < e.n; ++q)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(a(q, c), b(q, c)) << "entry " << q;
+}
+
 // §4.1: the corrections land on each entry's own three dofs, as a host loop adds them.
 TEST(ActiveKernels, AddToSlavesEqualsAHostLoop) {
   Entries e(kEntries);
