@@ -2,10 +2,10 @@
 """Thread scaling with an OpenMP build of Kokkos (perf/build_trilinos_openmp.sh, then emcontact
 built against it, e.g. in build-omp/): the assembly benchmark (BM_Assembly) and whole runs of
 the ball (flight and impact phases, as perf/scaling_report.py) with OMP_NUM_THREADS = each of
---threads on one rank. Efficiency = t1 / (N tN). With --repeat R each run is made R times, the
-thread counts interleaved (1, 2, 1, 2, ...) so that a drift of the shared machine's speed hits
-both alike, and each time (the wall time per step and every timer) is the smallest of the R: the
-run least disturbed by other work. Writes perf/results/threads.json and the table in
+--threads on one rank. Efficiency = t1 / (N tN). With --repeat R each run (and the benchmark) is
+made R times, the thread counts interleaved (1, 2, 1, 2, ...) so that a drift of the shared
+machine's speed hits both alike, and each time (the wall time per step and every timer) is the
+smallest of the R, each benchmark rate the largest: the run least disturbed by other work. Writes perf/results/threads.json and the table in
 perf/README.md between <!-- threads:begin --> and <!-- threads:end -->.
 
     /usr/bin/python3 perf/threads_report.py --build build-omp [--threads 1 2] [--sizes 0.026 0.0129]
@@ -48,7 +48,11 @@ def main():
     a = ap.parse_args()
     build = os.path.join(ROOT, a.build)
     os.makedirs(os.path.join(ROOT, 'perf', 'results'), exist_ok=True)
-    bench = {n: assembly_rate(build, n) for n in a.threads}
+    bench = {n: {} for n in a.threads}  # the fastest of --repeat interleaved runs of each rate
+    for _ in range(a.repeat):
+        for n in a.threads:
+            for name, rate in assembly_rate(build, n).items():
+                bench[n][name] = max(rate, bench[n].get(name, 0))
     runs = []
     for phase in a.phases:
         for size in a.sizes:
@@ -62,7 +66,7 @@ def main():
     n1 = a.threads[0]
     md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s --steps %d --repeat %d` (Kokkos OpenMP, '
           'one rank, `OMP_PROC_BIND=spread OMP_PLACES=threads`; the phases as in the scaling table; efficiency t1 / (N tN); '
-          'each time the smallest of %d interleaved runs).'
+          'each time the smallest of %d interleaved runs, each rate the largest).'
           % (datetime.date.today(), a.build, a.steps, a.repeat, a.repeat), '',
           '| benchmark | threads | tets/s | efficiency |', '|---|---|---|---|']
     for name in bench[n1]:
