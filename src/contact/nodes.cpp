@@ -7,6 +7,7 @@
 #include <array>
 #include <iterator>
 
+#include "emcontact/error.hpp"
 #include "emcontact/parallel.hpp"
 
 namespace emc::contact {
@@ -309,6 +310,8 @@ void ContactNodes::select(const Sweep& from, const Vector& u1, const ActiveIndex
 void ContactNodes::reselect(const ActiveIndex& index) {
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: node selection");
   Teuchos::TimeMonitor tm(*timer);
+  if (in_reach_.size() != pairs_.size())
+    throw Error("internal: ContactNodes::reselect before any select");
   auto need = in_reach_;
   close_chains(need, index);
   select_closed(std::move(need));

@@ -15,8 +15,6 @@ class DirectMumps : public DirectSolver {
  public:
   explicit DirectMumps(const Teuchos::RCP<const Comm>& comm);
   ~DirectMumps() override;
-  DirectMumps(const DirectMumps&) = delete;
-  DirectMumps& operator=(const DirectMumps&) = delete;
 
   /// The same structure: the same graph object, or equal row pointers and global columns on
   /// every rank (in any distribution of the rows). Errors: INFOG codes and their meaning.

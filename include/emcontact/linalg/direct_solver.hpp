@@ -9,7 +9,10 @@ namespace emc::linalg {
 
 class DirectSolver {
  public:
+  DirectSolver() = default;
   virtual ~DirectSolver() = default;
+  DirectSolver(const DirectSolver&) = delete;  // it owns the package's factors
+  DirectSolver& operator=(const DirectSolver&) = delete;
 
   /// Numeric factorisation of A, after a new analysis if A's structure differs from the one
   /// analysed last. The rows of A must be numbered 0..N-1. Throws LinearSolveError on a

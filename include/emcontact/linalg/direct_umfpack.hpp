@@ -15,8 +15,6 @@ class DirectUmfpack : public DirectSolver {
   /// Throws InputError on more than one rank (UMFPACK is sequential).
   explicit DirectUmfpack(const Teuchos::RCP<const Comm>& comm);
   ~DirectUmfpack() override;
-  DirectUmfpack(const DirectUmfpack&) = delete;
-  DirectUmfpack& operator=(const DirectUmfpack&) = delete;
 
   /// The same structure: the same graph object, or equal row pointers and global columns.
   /// Errors: UMFPACK's status code and its meaning (a singular matrix is one).
