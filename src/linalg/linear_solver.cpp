@@ -27,6 +27,8 @@ const char* preconditioner_name(Preconditioner p) {
       return "ilu";
     case Preconditioner::schwarz:
       return "schwarz";
+    case Preconditioner::chebyshev:
+      return "chebyshev";
     case Preconditioner::muelu:
       return "muelu";
     case Preconditioner::none:
@@ -86,8 +88,14 @@ void LinearSolver::matrix_changed() {
 
 void LinearSolver::choose_preconditioner(const RCP<Matrix>& A) {
   const bool large = static_cast<long long>(A->getGlobalNumRows()) >= auto_dofs_;
-  prec_type_ = large && muelu_available() ? Preconditioner::muelu : Preconditioner::ilu;
+  prec_type_ = large && muelu_available() ? Preconditioner::muelu : small_preconditioner();
   refreshable_ = prec_type_ == Preconditioner::muelu && refresh_;
+}
+
+// ILU(0)'s triangular solves run on one thread: on more, Chebyshev's matrix-vector products
+// are faster (perf/README.md "OpenMP threads").
+Preconditioner LinearSolver::small_preconditioner() {
+  return ExecSpace().concurrency() > 1 ? Preconditioner::chebyshev : Preconditioner::ilu;
 }
 
 void LinearSolver::setup_preconditioner(const RCP<Matrix>& A, int level) {
@@ -129,6 +137,9 @@ RCP<Teuchos::ParameterList> LinearSolver::belos_parameters(double tol) const {
   if (type_ == SolverType::gmres) {
     params->set("Num Blocks", std::min(max_iters_, 300));
     params->set("Maximum Restarts", std::max(1, max_iters_ / 300 + 1));
+    // modified Gram-Schmidt: vector operations that run on threads, where ICGS's block
+    // products go to the (serial) BLAS; faster on one core too (perf/README.md "Linear solvers")
+    params->set("Orthogonalization", "IMGS");
   }
   params->set("Implicit Residual Scaling", "Norm of RHS");
   params->set("Explicit Residual Scaling", "Norm of RHS");

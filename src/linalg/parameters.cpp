@@ -26,17 +26,21 @@ void set_linear(Teuchos::ParameterList& pl) {
                                      SolverType::mumps, SolverType::umfpack});
   set_choice(
       pl, "preconditioner", "auto",
-      "Preconditioner of the iterative solvers (ignored by klu2, mumps and umfpack); auto: ilu "
-      "or muelu by the system's size (Solver/Linear/multigrid from equations).",
-      {"auto", "ilu", "schwarz", "muelu", "none"},
-      {"muelu from Solver/Linear/multigrid from equations on (if built with MueLu), else ilu",
+      "Preconditioner of the iterative solvers (ignored by klu2, mumps and umfpack); auto: "
+      "muelu from Solver/Linear/multigrid from equations on, below it ilu on one thread and "
+      "chebyshev on more (perf/README.md).",
+      {"auto", "ilu", "schwarz", "chebyshev", "muelu", "none"},
+      {"muelu from Solver/Linear/multigrid from equations on (if built with MueLu), else ilu "
+       "on one thread, chebyshev on more",
        "Ifpack2 ILU", "Ifpack2 additive Schwarz",
+       "Ifpack2 Chebyshev polynomial of the diagonally scaled matrix (matrix-vector products "
+       "only: runs on threads)",
        "MueLu aggregation multigrid with rigid-body modes and Chebyshev smoothers (fewer "
        "Krylov iterations on large meshes, see perf/README.md)",
        "no preconditioner"},
       std::vector<Preconditioner>{Preconditioner::automatic, Preconditioner::ilu,
-                                  Preconditioner::schwarz, Preconditioner::muelu,
-                                  Preconditioner::none});
+                                  Preconditioner::schwarz, Preconditioner::chebyshev,
+                                  Preconditioner::muelu, Preconditioner::none});
   pl.set("tolerance", 1e-10,
          "Relative residual tolerance of the iterative solvers: every solve's with "
          "Solver/Newton/adaptive linear tolerance = false, else the tightest one (the solves "
@@ -56,7 +60,7 @@ void set_linear(Teuchos::ParameterList& pl) {
          double_range(1e-6, 0.9));
   pl.set("multigrid from equations", 150000,
          "With preconditioner = auto: muelu for Newton systems of at least this many equations "
-         "(3 per node), ilu below (the crossover measured in perf/README.md).",
+         "(3 per node), ilu or chebyshev below (the crossover measured in perf/README.md).",
          int_at_least(1));
   set_choice(
       pl, "multigrid near null space", "rigid body modes",
@@ -86,9 +90,14 @@ void set_linear(Teuchos::ParameterList& pl) {
          "After each solve the true relative residual must be below factor * tolerance, "
          "else the run fails.",
          double_at_least(1.0));
-  pl.sublist("Belos", false, "Passed unchanged to the Belos solver (any content).")
+  pl.sublist("Belos", false,
+             "Passed to the Belos solver over emcontact's defaults (gmres: Orthogonalization = "
+             "IMGS, Num Blocks = min(max iterations, 300); any Belos parameter).")
       .disableRecursiveValidation();
-  pl.sublist("Ifpack2", false, "Passed unchanged to Ifpack2 (any content).")
+  pl.sublist("Ifpack2", false,
+             "Passed to Ifpack2 over emcontact's defaults (ilu: fact: iluk level-of-fill = 0; "
+             "chebyshev: chebyshev: degree = 3; schwarz: overlap 1, ILU(0) inside; any Ifpack2 "
+             "parameter of the chosen preconditioner).")
       .disableRecursiveValidation();
   pl.sublist("MueLu", false,
              "Passed to MueLu over emcontact's defaults (plain aggregation, Chebyshev degree 3 "

@@ -19,6 +19,9 @@ Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<cons
     p.set("schwarz: combine mode", "ZERO");  // restricted additive Schwarz
     p.set("schwarz: inner preconditioner name", "RILUK");
     p.sublist("schwarz: inner preconditioner parameters").set("fact: iluk level-of-fill", 0);
+  } else if (type == Preconditioner::chebyshev) {
+    name = "CHEBYSHEV";
+    p.set("chebyshev: degree", 3);
   } else {
     p.set("fact: iluk level-of-fill", 0);
   }

@@ -22,9 +22,9 @@ Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::
   (void)nullspace;
   (void)coordinates;
   throw std::runtime_error(
-      "Linear solver/preconditioner = \"muelu\": this build of emcontact has no MueLu (the "
-      "Trilinos "
-      "it was built against lacks it); allowed here: auto, ilu, schwarz, none");
+      "Solver/Linear/preconditioner = \"muelu\": this build of emcontact has no MueLu (the "
+      "Trilinos it was built against lacks it); allowed here: auto, ilu, schwarz, chebyshev, "
+      "none");
 #else
   Teuchos::ParameterList p;
   p.set("number of equations", 3);

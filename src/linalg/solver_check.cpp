@@ -89,7 +89,7 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
   const std::string where = file.empty() ? "" : file + ": ";
   RCP<Matrix> A;
   if (auto_) {  // either may be chosen: both are tried
-    A = check_preconditioner(comm, where, Preconditioner::ilu);
+    A = check_preconditioner(comm, where, small_preconditioner());
     if (muelu_available()) A = check_preconditioner(comm, where, Preconditioner::muelu);
   } else {
     A = check_preconditioner(comm, where, prec_type_);

@@ -120,7 +120,7 @@ class LinearSolver {
   bool zero_eliminated_ = false;    ///< modes zero at eliminated (decoupled) dofs
   bool refresh_ = false;            ///< multigrid reuse = refresh (if muelu)
   bool refreshable_ = false;        ///< refresh_ and the preconditioner is muelu
-  bool auto_ = false;               ///< preconditioner = auto: chosen by size at each build
+  bool auto_ = false;               ///< preconditioner = auto: chosen at each build
   long long auto_dofs_ = 0;         ///< auto: muelu from this many equations
   bool stale_ = false;              ///< prec_ is for an earlier structure: refresh
   Teuchos::RCP<Vector> positions_;  ///< node positions for the next multigrid build
@@ -139,8 +139,10 @@ class LinearSolver {
   void build_preconditioner(const Teuchos::RCP<Matrix>& A,
                             std::vector<std::string>* unused = nullptr);
   Teuchos::RCP<Operator> make_muelu_with_modes(const Teuchos::RCP<Matrix>& A) const;
-  /// preconditioner = auto: muelu for A of at least auto_dofs_ rows, else ilu.
+  /// preconditioner = auto: muelu for A of at least auto_dofs_ rows, else small_preconditioner.
   void choose_preconditioner(const Teuchos::RCP<Matrix>& A);
+  /// auto's choice below multigrid's size: ilu on one thread, chebyshev on more.
+  static Preconditioner small_preconditioner();
   void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);
   Teuchos::RCP<Matrix> check_preconditioner(const Teuchos::RCP<const Comm>& comm,
                                             const std::string& where, Preconditioner type);

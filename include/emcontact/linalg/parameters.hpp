@@ -7,9 +7,9 @@ namespace emc::linalg {
 
 /// The values of the choices of `Solver/Linear` (their validators', read with
 /// Teuchos::getIntegralValue): `type`, `multigrid near null space`, `multigrid positions`,
-/// `multigrid reuse`, `preconditioner` (`automatic` is `auto`: ilu or muelu by size).
+/// `multigrid reuse`, `preconditioner` (`automatic` is `auto`: by size and threads).
 enum class SolverType { gmres, cg, klu2, mumps, umfpack };
-enum class Preconditioner { automatic, ilu, schwarz, muelu, none };
+enum class Preconditioner { automatic, ilu, schwarz, chebyshev, muelu, none };
 enum class NullSpace { rigid_body_modes, translations };
 enum class ModePositions { current, reference };
 enum class MultigridReuse { refresh, rebuild };
