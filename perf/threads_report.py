@@ -5,15 +5,19 @@ the ball (flight and impact phases, as perf/scaling_report.py) with OMP_NUM_THRE
 --threads on one rank. Efficiency = t1 / (N tN). With --repeat R each run (and the benchmark) is
 made R times, the thread counts interleaved (1, 2, 1, 2, ...) so that a drift of the shared
 machine's speed hits both alike, and each time (the wall time per step and every timer) is the
-smallest of the R, each benchmark rate the largest: the run least disturbed by other work. Writes perf/results/threads.json and the table in
-perf/README.md between <!-- threads:begin --> and <!-- threads:end -->.
+smallest of the R, each benchmark rate the largest: the run least disturbed by other work. Each
+run is made with each of --preconditioners (Solver/Linear/preconditioner); the column "against
+the first" is the first preconditioner's time on the first thread count over this run's. Writes
+perf/results/threads.json and the table in perf/README.md between <!-- threads:begin --> and
+<!-- threads:end -->.
 
     /usr/bin/python3 perf/threads_report.py --build build-omp [--threads 1 2] [--sizes 0.026 0.0129]
-        [--repeat 3]
+        [--repeat 3] [--preconditioners ilu chebyshev]
 """
 import argparse, datetime, json, os, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
+import scaling_report  # noqa: E402
 from scaling_report import CONTACT_TIMERS, TIMERS, run  # noqa: E402
 
 
@@ -45,7 +49,12 @@ def main():
     ap.add_argument('--steps', type=int, default=10)
     ap.add_argument('--phases', nargs='+', default=['flight', 'impact'])
     ap.add_argument('--repeat', type=int, default=1, help='runs per configuration; the fastest times are kept')
+    ap.add_argument('--preconditioners', nargs='+', default=['ilu', 'chebyshev'])
+    ap.add_argument('--from-json', action='store_true',
+                    help='no runs: the tables from perf/results/threads.json, as measured with these arguments')
     a = ap.parse_args()
+    if a.from_json:
+        return write_tables(a, **json.load(open(os.path.join(ROOT, 'perf', 'results', 'threads.json'))))
     build = os.path.join(ROOT, a.build)
     os.makedirs(os.path.join(ROOT, 'perf', 'results'), exist_ok=True)
     bench = {n: {} for n in a.threads}  # the fastest of --repeat interleaved runs of each rate
@@ -56,36 +65,55 @@ def main():
     runs = []
     for phase in a.phases:
         for size in a.sizes:
-            trials = {n: [] for n in a.threads}
+            trials = {(p, n): [] for p in a.preconditioners for n in a.threads}
             for _ in range(a.repeat):
-                for n in a.threads:
-                    trials[n].append(run(build, size, 1, a.steps, phase, threads=n))
-            runs += [fastest(trials[n]) for n in a.threads]
-    json.dump(dict(date=datetime.date.today().isoformat(), assembly=bench, runs=runs),
+                for p in a.preconditioners:
+                    scaling_report.PRECONDITIONER = p
+                    for n in a.threads:
+                        trials[p, n].append(dict(run(build, size, 1, a.steps, phase, threads=n), prec_name=p))
+            runs += [fastest(trials[p, n]) for p in a.preconditioners for n in a.threads]
+    date = datetime.date.today().isoformat()
+    json.dump(dict(date=date, assembly=bench, runs=runs),
               open(os.path.join(ROOT, 'perf', 'results', 'threads.json'), 'w'), indent=1)
+    write_tables(a, date, bench, runs)
+
+
+def write_tables(a, date, assembly, runs):
+    bench = {int(n): rates for n, rates in assembly.items()}
+    for r in runs:  # the first run with --preconditioners stored the name over the timer's key
+        if isinstance(r.get('preconditioner'), str):
+            r['prec_name'] = r.pop('preconditioner')
+    missing = sorted({t for r in runs for t in TIMERS if t not in r})
     n1 = a.threads[0]
-    md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s --steps %d --repeat %d` (Kokkos OpenMP, '
-          'one rank, `OMP_PROC_BIND=spread OMP_PLACES=threads`; the phases as in the scaling table; efficiency t1 / (N tN); '
-          'each time the smallest of %d interleaved runs, each rate the largest).'
-          % (datetime.date.today(), a.build, a.steps, a.repeat, a.repeat), '',
+    md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s --steps %d --repeat %d --preconditioners %s` '
+          '(Kokkos OpenMP, one rank, `OMP_PROC_BIND=spread OMP_PLACES=threads`; the phases as in the scaling table; '
+          'efficiency t1 / (N tN) with the same preconditioner; each time the smallest of %d interleaved runs, each rate '
+          'the largest%s).' % (date, a.build, a.steps, a.repeat, ' '.join(a.preconditioners), a.repeat,
+                               '; not recorded, n/a: the ' + ', '.join(missing) + ' timer' if missing else ''), '',
           '| benchmark | threads | tets/s | efficiency |', '|---|---|---|---|']
     for name in bench[n1]:
         for n in a.threads:
             md.append('| %s | %d | %.3gM | %.0f%% |' % (name, n, bench[n][name] / 1e6, 100 * bench[n][name] / (n * bench[n1][name])))
-    md += ['', '| phase | tets | threads | wall s/step | Newton its/step | Krylov its/solve | s/step: ' + ' / '.join(TIMERS) +
-           ' | efficiency |', '|---|---|---|---|---|---|---|---|']
+    md += ['', '| phase | tets | preconditioner | threads | wall s/step | Newton its/step | Krylov its/solve | s/step: ' +
+           ' / '.join(TIMERS) + ' | efficiency | against the first |', '|---|---|---|---|---|---|---|---|---|---|']
+    p1 = a.preconditioners[0]
     for r in runs:
-        one = next(x for x in runs if x['phase'] == r['phase'] and x['size'] == r['size'] and x['threads'] == n1)
-        md.append('| %s | %d | %d | %.4f | %.2f | %.1f | %s | %.0f%% |' % (
-            r['phase'], r['tets'], r['threads'], r['s_per_step'], r['newton_per_step'], r['krylov_per_solve'],
-            ' / '.join('%.4f' % r.get(t, 0) for t in TIMERS), 100 * one['s_per_step'] / (r['threads'] * r['s_per_step'])))
-    md += ['', 'Contact (THEORY §8) in the impact phase, s/step, and its share of the assembly:', '',
+        one = next(x for x in runs if x['phase'] == r['phase'] and x['size'] == r['size'] and x['threads'] == n1
+                   and x['prec_name'] == r['prec_name'])
+        first = next(x for x in runs if x['phase'] == r['phase'] and x['size'] == r['size'] and x['threads'] == n1
+                     and x['prec_name'] == p1)
+        md.append('| %s | %d | %s | %d | %.4f | %.2f | %.1f | %s | %.0f%% | %.2fx |' % (
+            r['phase'], r['tets'], r['prec_name'], r['threads'], r['s_per_step'], r['newton_per_step'],
+            r['krylov_per_solve'], ' / '.join('%.4f' % r[t] if t in r else 'n/a' for t in TIMERS),
+            100 * one['s_per_step'] / (r['threads'] * r['s_per_step']), first['s_per_step'] / r['s_per_step']))
+    md += ['', 'Contact (THEORY §8) in the impact phase with %s, s/step, and its share of the assembly:' % p1, '',
            '| tets | threads | contact | ' + ' | '.join(t.split(': ')[1] for t in CONTACT_TIMERS) +
            ' | contact / assembly | contact efficiency |', '|---|---|---|' + '---|' * len(CONTACT_TIMERS) + '---|---|']
     for r in runs:
-        if r['phase'] != 'impact':
+        if r['phase'] != 'impact' or r['prec_name'] != p1:
             continue
-        one = next(x for x in runs if x['phase'] == 'impact' and x['size'] == r['size'] and x['threads'] == n1)
+        one = next(x for x in runs if x['phase'] == 'impact' and x['size'] == r['size'] and x['threads'] == n1
+                   and x['prec_name'] == p1)
         md.append('| %d | %d | %.4f | %s | %.1f%% | %.0f%% |' % (
             r['tets'], r['threads'], r.get('contact', 0), ' | '.join('%.4f' % r.get(t, 0) for t in CONTACT_TIMERS),
             100 * r.get('contact', 0) / r['assembly'], 100 * one.get('contact', 0) / (r['threads'] * r.get('contact', 1e-300))))
