@@ -33,7 +33,7 @@ PHASES = {
 }
 
 
-def run(build, size, ranks, steps, phase, threads=None):
+def run(build, size, ranks, steps, phase, threads=None, preconditioner=None):
     out = os.path.join('out', 'scaling_%s_%s_np%d_t%s' % (phase, size, ranks, threads or 0))
     cmd = ['/usr/bin/time', '-v']
     if ranks > 1:
@@ -41,7 +41,7 @@ def run(build, size, ranks, steps, phase, threads=None):
     cmd += [os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out, '--overwrite',
             '--set', 'Bodies/ball/Mesh/size=%s' % size, '--set', 'Time/end=%g' % (steps * 0.001),
             '--set', 'Output/every=0', '--set', 'Output/plot=false', '--set', 'Output/progress=false']
-    cmd += PHASES[phase] + ['--set', 'Solver/Linear/preconditioner=%s' % PRECONDITIONER]
+    cmd += PHASES[phase] + ['--set', 'Solver/Linear/preconditioner=%s' % (preconditioner or PRECONDITIONER)]
     env = dict(ENV)
     if threads:
         env.update(OMP_NUM_THREADS=str(threads), OMP_PROC_BIND='spread', OMP_PLACES='threads')

@@ -17,7 +17,6 @@ perf/results/threads.json and the table in perf/README.md between <!-- threads:b
 import argparse, datetime, json, os, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
-import scaling_report  # noqa: E402
 from scaling_report import CONTACT_TIMERS, TIMERS, run  # noqa: E402
 
 
@@ -68,9 +67,9 @@ def main():
             trials = {(p, n): [] for p in a.preconditioners for n in a.threads}
             for _ in range(a.repeat):
                 for p in a.preconditioners:
-                    scaling_report.PRECONDITIONER = p
                     for n in a.threads:
-                        trials[p, n].append(dict(run(build, size, 1, a.steps, phase, threads=n), prec_name=p))
+                        trials[p, n].append(dict(run(build, size, 1, a.steps, phase, threads=n, preconditioner=p),
+                                                 prec_name=p))
             runs += [fastest(trials[p, n]) for p in a.preconditioners for n in a.threads]
     date = datetime.date.today().isoformat()
     json.dump(dict(date=date, assembly=bench, runs=runs),
@@ -80,9 +79,6 @@ def main():
 
 def write_tables(a, date, assembly, runs):
     bench = {int(n): rates for n, rates in assembly.items()}
-    for r in runs:  # the first run with --preconditioners stored the name over the timer's key
-        if isinstance(r.get('preconditioner'), str):
-            r['prec_name'] = r.pop('preconditioner')
     missing = sorted({t for r in runs for t in TIMERS if t not in r})
     n1 = a.threads[0]
     md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s --steps %d --repeat %d --preconditioners %s` '
