@@ -40,10 +40,12 @@ class DirectSolver {
 /// most two corrections solved the same way for the true residual b - A x: Belos tests the
 /// residual GMRES updates, which drifts from the true one when M's solves are inexact (factors
 /// of an earlier matrix, or UMFPACK's diagonal-preferring pivots on the ill-conditioned hollow
-/// cylinders: "converged" with a true residual of 3e-7 against 1e-10). Unconverged GMRES is
-/// corrected only if `refine_unconverged` (fresh factors; reused ones are factored anew
-/// instead). Returns the GMRES iterations; `true_residual`: ||b - A x|| / ||b|| at the end
-/// (||b - A x|| if b = 0), or -1 if unconverged GMRES was not corrected.
+/// cylinders: "converged" with a true residual of 3e-7 against 1e-10). GMRES that used up its
+/// cap unconverged is corrected only if `refine_unconverged` (fresh factors; reused ones are
+/// factored anew instead); one that Belos stopped before the cap for the drift ("loss of
+/// accuracy") is corrected within what is left of the cap. Returns the GMRES iterations;
+/// `true_residual`: ||b - A x|| / ||b|| at the end (||b - A x|| if b = 0), or -1 if
+/// unconverged GMRES was not corrected.
 int gmres_on_factors(const Teuchos::RCP<Matrix>& A, const Teuchos::RCP<Operator>& M,
                      const Vector& b, Vector& x, double tol, int cap, bool refine_unconverged,
                      bool& converged, double& true_residual);
