@@ -16,9 +16,6 @@ namespace emc::linalg {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
-namespace {
-
-/// The input's name of a preconditioner (Solver/Linear/preconditioner).
 const char* preconditioner_name(Preconditioner p) {
   switch (p) {
     case Preconditioner::automatic:
@@ -36,8 +33,6 @@ const char* preconditioner_name(Preconditioner p) {
   }
   return "none";
 }
-
-}  // namespace
 
 LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm> comm,
                            const std::string& file)
@@ -105,14 +100,15 @@ void LinearSolver::setup_preconditioner(const RCP<Matrix>& A, int level) {
   refresh_muelu(A, *prec_);
 }
 
-void LinearSolver::build_preconditioner(const RCP<Matrix>& A, std::vector<std::string>* unused) {
+void LinearSolver::build_preconditioner(const RCP<Matrix>& A, std::vector<std::string>* unused,
+                                        std::vector<std::string>* ignored) {
   Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: preconditioner"));
   if (prec_type_ == Preconditioner::none)
     prec_ = Teuchos::null;
   else if (prec_type_ == Preconditioner::muelu)
     prec_ = make_muelu_with_modes(A);
   else
-    prec_ = make_ifpack2(prec_type_, A, ifpack2_, unused);
+    prec_ = make_ifpack2(prec_type_, A, ifpack2_, unused, ignored);
 }
 
 void LinearSolver::set_configuration(const Vector& X, const Vector& u) {

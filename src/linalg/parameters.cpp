@@ -94,10 +94,13 @@ void set_linear(Teuchos::ParameterList& pl) {
              "Passed to the Belos solver over emcontact's defaults (gmres: Orthogonalization = "
              "IMGS, Num Blocks = min(max iterations, 300); any Belos parameter).")
       .disableRecursiveValidation();
-  pl.sublist("Ifpack2", false,
-             "Passed to Ifpack2 over emcontact's defaults (ilu: fact: iluk level-of-fill = 0; "
-             "chebyshev: chebyshev: degree = 3; schwarz: overlap 1, ILU(0) inside; any Ifpack2 "
-             "parameter of the chosen preconditioner).")
+  pl.sublist(
+        "Ifpack2", false,
+        "Passed to Ifpack2 over emcontact's defaults (ilu: fact: iluk level-of-fill = 0; "
+        "chebyshev: chebyshev: degree = 3; schwarz: overlap 1, ILU(0) inside; any Ifpack2 "
+        "parameter of the chosen preconditioner; a name Ifpack2 does not know, or one of another "
+        "preconditioner's family (fact: with chebyshev, chebyshev: with ilu), is warned "
+        "about at the start).")
       .disableRecursiveValidation();
   pl.sublist("MueLu", false,
              "Passed to MueLu over emcontact's defaults (plain aggregation, Chebyshev degree 3 "

@@ -4,13 +4,29 @@
 #include "emcontact/linalg/linear_solver.hpp"
 
 namespace emc::linalg {
+namespace {
+
+/// Whether Ifpack2 parameter `name` (known to Ifpack2) belongs to a preconditioner other than
+/// `type`, by its family prefix: RILUK reads only "fact:" names, Chebyshev only "chebyshev:"
+/// ones (Schwarz hands names to its inner preconditioner: never flagged).
+bool of_another_preconditioner(const std::string& name, Preconditioner type) {
+  if (type == Preconditioner::schwarz) return false;
+  const std::string own = type == Preconditioner::chebyshev ? "chebyshev:" : "fact:";
+  for (const char* family :
+       {"fact:", "chebyshev:", "relaxation:", "schwarz:", "partitioner:", "krylov:", "amesos2"})
+    if (name.rfind(family, 0) == 0) return own != family;
+  return false;
+}
+
+}  // namespace
 
 // `ilu`: RILUK(0); `schwarz`: restricted additive Schwarz with overlap 1 and RILUK(0) inside
 // (measured best of the Ifpack2 options on 2 ranks, see README "Toolchain"). The user's
 // `Ifpack2` sublist overrides these defaults unchanged.
 Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<const Matrix>& A,
                                     const Teuchos::ParameterList& user,
-                                    std::vector<std::string>* unused) {
+                                    std::vector<std::string>* unused,
+                                    std::vector<std::string>* ignored) {
   Teuchos::ParameterList p;
   std::string name = "RILUK";
   if (type == Preconditioner::schwarz) {
@@ -28,11 +44,17 @@ Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<cons
   p.setParameters(user);
   auto prec = Ifpack2::Factory::create<Matrix>(name, A);
   prec->setParameters(p);
-  if (unused) {  // Ifpack2 ignores names it does not know
+  if (unused || ignored) {  // Ifpack2 ignores names it does not know, and other families'
     Teuchos::ParameterList valid;
     Ifpack2::getValidParameters(valid);
-    for (auto it = user.begin(); it != user.end(); ++it)
-      if (!valid.isParameter(user.name(it))) unused->push_back(user.name(it));
+    for (auto it = user.begin(); it != user.end(); ++it) {
+      const std::string& n = user.name(it);
+      if (!valid.isParameter(n)) {
+        if (unused) unused->push_back(n);
+      } else if (ignored && of_another_preconditioner(n, type)) {
+        ignored->push_back(n);
+      }
+    }
   }
   prec->initialize();
   prec->compute();

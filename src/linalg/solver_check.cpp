@@ -70,10 +70,10 @@ RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
   // set up too (a smoother parameter of the wrong type was otherwise found only mid-run)
   const bool muelu = type == Preconditioner::muelu;
   const auto A = test_matrix(comm, muelu ? 2400 : 6);
-  std::vector<std::string> unused;
+  std::vector<std::string> unused, ignored;
   const std::string prec = muelu ? "MueLu" : "Ifpack2";
   try {
-    build_preconditioner(A, &unused);
+    build_preconditioner(A, &unused, &ignored);
   } catch (const std::exception& e) {
     throw InputError(where + "parameter \"Solver/Linear/" + prec + "\": " + prec +
                      " refused it: " + one_line(e.what()) + "; allowed: parameters " + prec +
@@ -82,6 +82,14 @@ RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
   if (!unused.empty() && comm->getRank() == 0)
     std::fprintf(stderr, "warning: %sSolver/Linear/Ifpack2: %s not known to Ifpack2 (typo?)\n",
                  where.c_str(), quoted_list(unused).c_str());
+  if (!ignored.empty() && comm->getRank() == 0)
+    std::fprintf(stderr,
+                 "warning: %sSolver/Linear/Ifpack2: %s not read by %s, the preconditioner "
+                 "used%s\n",
+                 where.c_str(), quoted_list(ignored).c_str(), preconditioner_name(type),
+                 auto_ ? " (preconditioner = auto chooses it by size and threads: "
+                         "perf/README.md)"
+                       : "");
   return A;
 }
 

@@ -308,6 +308,16 @@ hostile_pass_through_typos_warned() {
   expect_err 'warning: .*Ifpack2.*"fact: iluk levl-of-fill"'
 }
 
+hostile_ifpack2_parameters_of_another_preconditioner_warned() {
+  emc_good_input in.xml
+  expect_exit_within 60 0 "$EMC" in.xml --set Solver/Linear/preconditioner=chebyshev \
+    --set "Solver/Linear/Ifpack2/fact: iluk level-of-fill=1" --output out
+  expect_err 'warning: .*Ifpack2.*"fact: iluk level-of-fill" not read by chebyshev'
+  expect_exit_within 60 0 "$EMC" in.xml --set Solver/Linear/preconditioner=ilu \
+    --set "Solver/Linear/Ifpack2/chebyshev: degree=4" --output out2
+  expect_err 'warning: .*Ifpack2.*"chebyshev: degree" not read by ilu'
+}
+
 # --- files that are not regular files ---
 
 hostile_fifo_input_refused() {

@@ -30,11 +30,16 @@ struct SolveStats {
   bool fresh_preconditioner = false;
 };
 
+/// The input's name of a preconditioner (Solver/Linear/preconditioner).
+const char* preconditioner_name(Preconditioner p);
+
 /// A preconditioner factory result (Ifpack2 or MueLu), as a Tpetra operator. `unused`, if
-/// given, receives the names of `user` that Ifpack2 does not know.
+/// given, receives the names of `user` that Ifpack2 does not know; `ignored` those it knows
+/// for another preconditioner than `type` (e.g. "fact: ..." with chebyshev).
 Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<const Matrix>& A,
                                     const Teuchos::ParameterList& user,
-                                    std::vector<std::string>* unused = nullptr);
+                                    std::vector<std::string>* unused = nullptr,
+                                    std::vector<std::string>* ignored = nullptr);
 /// Smoothed aggregation with 3 dofs per node; `nullspace` (rigid-body modes) and `coordinates`
 /// (node map) go to MueLu's user data when not null.
 Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::ParameterList& user,
@@ -137,7 +142,8 @@ class LinearSolver {
   /// Builds (level 2) or refreshes (level 1) the preconditioner for A.
   void setup_preconditioner(const Teuchos::RCP<Matrix>& A, int level);
   void build_preconditioner(const Teuchos::RCP<Matrix>& A,
-                            std::vector<std::string>* unused = nullptr);
+                            std::vector<std::string>* unused = nullptr,
+                            std::vector<std::string>* ignored = nullptr);
   Teuchos::RCP<Operator> make_muelu_with_modes(const Teuchos::RCP<Matrix>& A) const;
   /// preconditioner = auto: muelu for A of at least auto_dofs_ rows, else small_preconditioner.
   void choose_preconditioner(const Teuchos::RCP<Matrix>& A);
