@@ -24,6 +24,10 @@ using Teuchos::RCP;
 using Teuchos::rcp;
 
 /// GMRES from x = 0, right-preconditioned by M, at most `cap` iterations (no restart).
+/// Flexible GMRES keeps the preconditioned basis Z = M^-1 V, so x = Z y costs no further solve
+/// with M (plain right-preconditioned GMRES solves M x = V y at the end: one solve more per
+/// call, and a fresh factorisation's whole solve is one iteration). Its test is the residual
+/// it updates; the caller checks the true one.
 int capped_gmres(const RCP<Matrix>& A, const RCP<Operator>& M, const Vector& b, Vector& x,
                  double tol, int cap, bool& converged) {
   using Problem = Belos::LinearProblem<double, MultiVector, Operator>;
@@ -32,14 +36,14 @@ int capped_gmres(const RCP<Matrix>& A, const RCP<Operator>& M, const Vector& b, 
   params->set("Maximum Iterations", cap);
   params->set("Num Blocks", cap);
   params->set("Maximum Restarts", 0);
+  params->set("Flexible Gmres", true);
   params->set("Implicit Residual Scaling", "Norm of RHS");
-  params->set("Explicit Residual Scaling", "Norm of RHS");
   x.putScalar(0.0);
   auto problem = rcp(new Problem(A, Teuchos::rcpFromRef(x), Teuchos::rcpFromRef(b)));
   problem->setRightPrec(M);
   problem->setProblem();
   Belos::SolverFactory<double, MultiVector, Operator> factory;
-  auto solver = factory.create("GMRES", params);
+  auto solver = factory.create("Block GMRES", params);
   solver->setProblem(problem);
   converged = solver->solve() == Belos::Converged;
   return solver->getNumIters();
@@ -52,10 +56,11 @@ int gmres_on_factors(const RCP<Matrix>& A, const RCP<Operator>& M, const Vector&
                      double& true_residual) {
   int its = capped_gmres(A, M, b, x, tol, cap, converged);
   true_residual = -1;
-  // GMRES that stopped before its cap without converging did not contract too slowly: Belos
-  // found the residual it updates below tol and the true one above ("loss of accuracy"; with
-  // the factors of the matrix one step earlier and tol = 1e-12, the ball of inputs/ball.xml
-  // stopped so at 2 iterations, and one correction gives 6e-16). Corrected within the cap.
+  // GMRES that stopped before its cap did not contract too slowly, even where the true residual
+  // is above tol while the one it updates is below (the solves of an ill-conditioned matrix:
+  // inputs/ball.xml with the factors of the step before and tol = 1e-12 stops at 2 iterations
+  // with a true residual of 4.5e-10, and one correction gives 6e-16): it is corrected within
+  // the rest of the cap, not refactored.
   const bool stopped_early = !converged && its < cap;
   if (!converged && !refine_unconverged && !stopped_early) return its;
   Vector r(b.getMap()), dx(b.getMap());

@@ -42,8 +42,8 @@ class DirectSolver {
 /// of an earlier matrix, or UMFPACK's diagonal-preferring pivots on the ill-conditioned hollow
 /// cylinders: "converged" with a true residual of 3e-7 against 1e-10). GMRES that used up its
 /// cap unconverged is corrected only if `refine_unconverged` (fresh factors; reused ones are
-/// factored anew instead); one that Belos stopped before the cap for the drift ("loss of
-/// accuracy") is corrected within what is left of the cap. Returns the GMRES iterations;
+/// factored anew instead); one that stopped before the cap (its test met on the residual it
+/// updates) is corrected within what is left of the cap. Returns the GMRES iterations;
 /// `true_residual`: ||b - A x|| / ||b|| at the end (||b - A x|| if b = 0), or -1 if
 /// unconverged GMRES was not corrected.
 int gmres_on_factors(const Teuchos::RCP<Matrix>& A, const Teuchos::RCP<Operator>& M,

@@ -23,6 +23,19 @@ Teuchos::RCP<const Map> cyclic_map(const Teuchos::RCP<const Comm>& comm) {
   return Teuchos::rcp(new Map(kDirectRows, Teuchos::ArrayView<const GO>(mine), 0, comm));
 }
 
+/// The stencil A on cyclic rows, MUMPS's factors of A with entry k scaled by 1 + eps sin(k),
+/// and a random right-hand side b.
+struct PerturbedFactors {
+  Teuchos::RCP<const Map> map = cyclic_map(Tpetra::getDefaultComm());
+  Teuchos::RCP<Matrix> A = stencil(map, 1.0);
+  linalg::DirectMumps mumps{Tpetra::getDefaultComm()};
+  Vector b{map}, x{map};
+  explicit PerturbedFactors(double eps) {
+    mumps.factor(perturbed(*A, eps));
+    b.randomize();
+  }
+};
+
 /// M's solves with a relative error of `noise` that differs from call to call, as the solves
 /// of an ill-conditioned matrix have (round-off of eps cond(A), not a fixed linear operator).
 class NoisyInverse : public Operator {
@@ -67,14 +80,10 @@ TEST(LinearSolverMumps, ReusesTheFactorsWhileGmresConvergesWithThem) {
 // iterations leave about 1e-4, short of 1e-10; unrefined that is reported unconverged, refined
 // the corrections for the true residual reach 1e-10, and the residual reported is the true one.
 TEST(GmresOnFactors, CorrectsForTheTrueResidualWhereTheFactorsAreInexact) {
-  auto comm = Tpetra::getDefaultComm();
-  const auto map = cyclic_map(comm);
-  const auto A = stencil(map, 1.0);
-  linalg::DirectMumps mumps(comm);
-  mumps.factor(perturbed(*A, 1e-2));
-  const auto M = mumps.as_operator();
-  Vector b(map), x(map);
-  b.randomize();
+  PerturbedFactors f(1e-2);
+  const auto& A = f.A;
+  const auto M = f.mumps.as_operator();
+  auto &b = f.b, &x = f.x;
   constexpr double tol = 1e-10;
   constexpr int cap = 2;
   bool converged = true;
@@ -93,21 +102,17 @@ TEST(GmresOnFactors, CorrectsForTheTrueResidualWhereTheFactorsAreInexact) {
   EXPECT_NEAR(true_residual, relative_residual(*A, x, b), 1e-15);
 }
 
-// Belos stops GMRES before its cap, unconverged, when the residual it updates has met tol and
-// the true one has not ("loss of accuracy"): the solves of an ill-conditioned matrix carry a
-// round-off that differs from call to call (eps cond(A); inputs/ball.xml with the factors of the
-// step before: 2 iterations, true residual 4.5e-10 against tol 1e-12). That is no slow
-// contraction: the correction for the true residual reaches tol within the rest of the cap. A
-// cap used up unconverged is still reported unconverged (the factors are renewed).
+// GMRES stops before its cap when the residual it updates has met tol and the true one has not:
+// the solves of an ill-conditioned matrix carry a round-off that differs from call to call
+// (eps cond(A); inputs/ball.xml with the factors of the step before: 2 iterations, true residual
+// 4.5e-10 against tol 1e-12). That is no slow contraction: the correction for the true residual
+// reaches tol within the rest of the cap. A cap used up unconverged is still reported
+// unconverged (the factors are renewed).
 TEST(GmresOnFactors, CorrectsAnEarlyStopWithinTheCap) {
-  auto comm = Tpetra::getDefaultComm();
-  const auto map = cyclic_map(comm);
-  const auto A = stencil(map, 1.0);
-  linalg::DirectMumps mumps(comm);
-  mumps.factor(perturbed(*A, 1e-7));
-  const auto M = Teuchos::rcp(new NoisyInverse(mumps.as_operator(), 1e-9));
-  Vector b(map), x(map);
-  b.randomize();
+  PerturbedFactors f(1e-7);
+  const auto& A = f.A;
+  const Teuchos::RCP<Operator> M = Teuchos::rcp(new NoisyInverse(f.mumps.as_operator(), 1e-9));
+  auto &b = f.b, &x = f.x;
   constexpr double tol = 1e-12;
   bool converged = false;
   double true_residual = 0;
