@@ -50,7 +50,8 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
                MultigridReuse::refresh),
       refreshable_(prec_type_ == Preconditioner::muelu && refresh_),
       auto_(prec_type_ == Preconditioner::automatic),
-      auto_dofs_(linear.get<int>("multigrid from equations")) {
+      auto_dofs_(linear.get<int>("multigrid from equations")),
+      chebyshev_dofs_(linear.get<int>("chebyshev from equations")) {
   if (linear.isSublist("Belos")) belos_ = linear.sublist("Belos");
   if (linear.isSublist("Ifpack2")) ifpack2_ = linear.sublist("Ifpack2");
   if (linear.isSublist("MueLu")) muelu_ = linear.sublist("MueLu");
@@ -83,14 +84,18 @@ void LinearSolver::matrix_changed() {
 
 void LinearSolver::choose_preconditioner(const RCP<Matrix>& A) {
   const bool large = static_cast<long long>(A->getGlobalNumRows()) >= auto_dofs_;
-  prec_type_ = large && muelu_available() ? Preconditioner::muelu : small_preconditioner();
+  prec_type_ = large && muelu_available()
+                   ? Preconditioner::muelu
+                   : small_preconditioner(static_cast<long long>(A->getGlobalNumRows()));
   refreshable_ = prec_type_ == Preconditioner::muelu && refresh_;
 }
 
 // ILU(0)'s triangular solves run on one thread: on more, Chebyshev's matrix-vector products
-// are faster (perf/README.md "OpenMP threads").
-Preconditioner LinearSolver::small_preconditioner() {
-  return ExecSpace().concurrency() > 1 ? Preconditioner::chebyshev : Preconditioner::ilu;
+// are faster (perf/README.md "OpenMP threads"); on one, from about 10k equations too
+// (perf/README.md, "Linear solvers").
+Preconditioner LinearSolver::small_preconditioner(long long rows) const {
+  return ExecSpace().concurrency() > 1 || rows >= chebyshev_dofs_ ? Preconditioner::chebyshev
+                                                                  : Preconditioner::ilu;
 }
 
 void LinearSolver::setup_preconditioner(const RCP<Matrix>& A, int level) {

@@ -27,11 +27,11 @@ void set_linear(Teuchos::ParameterList& pl) {
   set_choice(
       pl, "preconditioner", "auto",
       "Preconditioner of the iterative solvers (ignored by klu2, mumps and umfpack); auto: "
-      "muelu from Solver/Linear/multigrid from equations on, below it ilu on one thread and "
-      "chebyshev on more (perf/README.md).",
+      "muelu from Solver/Linear/multigrid from equations on, below it chebyshev on 2+ threads "
+      "or from Solver/Linear/chebyshev from equations on, else ilu (perf/README.md).",
       {"auto", "ilu", "schwarz", "chebyshev", "muelu", "none"},
-      {"muelu from Solver/Linear/multigrid from equations on (if built with MueLu), else ilu "
-       "on one thread, chebyshev on more",
+      {"muelu from Solver/Linear/multigrid from equations on (if built with MueLu), else "
+       "chebyshev on 2+ threads or from Solver/Linear/chebyshev from equations on, else ilu",
        "Ifpack2 ILU", "Ifpack2 additive Schwarz",
        "Ifpack2 Chebyshev polynomial of the diagonally scaled matrix (matrix-vector products "
        "only: runs on threads)",
@@ -61,6 +61,11 @@ void set_linear(Teuchos::ParameterList& pl) {
   pl.set("multigrid from equations", 150000,
          "With preconditioner = auto: muelu for Newton systems of at least this many equations "
          "(3 per node), ilu or chebyshev below (the crossover measured in perf/README.md).",
+         int_at_least(1));
+  pl.set("chebyshev from equations", 8000,
+         "With preconditioner = auto on one thread, below multigrid from equations: chebyshev "
+         "for Newton systems of at least this many equations, ilu below (the one-core crossover "
+         "measured in perf/README.md; on 2+ threads chebyshev at any size).",
          int_at_least(1));
   set_choice(
       pl, "multigrid near null space", "rigid body modes",

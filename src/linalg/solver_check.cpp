@@ -4,6 +4,7 @@
 // (typos) are reported.
 #include <BelosSolverFactory_Tpetra.hpp>
 #include <BelosTpetraAdapter.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <regex>
 #include <sstream>
@@ -62,15 +63,18 @@ std::string one_line(const std::string& message) {
   return out.empty() ? "(no message)" : out;
 }
 
-/// Builds the preconditioner `type` on a test matrix and returns the matrix (prec_ is set).
+/// Builds the preconditioner `type` on a test matrix and returns the matrix (prec_ is set);
+/// `ignored` receives the Ifpack2 names of another preconditioner's family.
 RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
-                                               const std::string& where, Preconditioner type) {
+                                               const std::string& where, Preconditioner type,
+                                               std::vector<std::string>& ignored) {
   prec_type_ = type;
   // MueLu: above its default coarse size (2000 rows), so that the smoothers of a fine level are
   // set up too (a smoother parameter of the wrong type was otherwise found only mid-run)
   const bool muelu = type == Preconditioner::muelu;
   const auto A = test_matrix(comm, muelu ? 2400 : 6);
-  std::vector<std::string> unused, ignored;
+  std::vector<std::string> unused;
+  ignored.clear();
   const std::string prec = muelu ? "MueLu" : "Ifpack2";
   try {
     build_preconditioner(A, &unused, &ignored);
@@ -82,26 +86,38 @@ RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
   if (!unused.empty() && comm->getRank() == 0)
     std::fprintf(stderr, "warning: %sSolver/Linear/Ifpack2: %s not known to Ifpack2 (typo?)\n",
                  where.c_str(), quoted_list(unused).c_str());
-  if (!ignored.empty() && comm->getRank() == 0)
-    std::fprintf(stderr,
-                 "warning: %sSolver/Linear/Ifpack2: %s not read by %s, the preconditioner "
-                 "used%s\n",
-                 where.c_str(), quoted_list(ignored).c_str(), preconditioner_name(type),
-                 auto_ ? " (preconditioner = auto chooses it by size and threads: "
-                         "perf/README.md)"
-                       : "");
   return A;
 }
 
 void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
   const std::string where = file.empty() ? "" : file + ": ";
   RCP<Matrix> A;
-  if (auto_) {  // either may be chosen: both are tried
-    A = check_preconditioner(comm, where, small_preconditioner());
-    if (muelu_available()) A = check_preconditioner(comm, where, Preconditioner::muelu);
+  std::vector<std::string> ignored;
+  std::string used = preconditioner_name(prec_type_);
+  if (auto_) {  // any of them may be chosen: each is tried; a name is ignored if all ignore it
+    std::vector<Preconditioner> small{Preconditioner::chebyshev};
+    if (ExecSpace().concurrency() == 1) small.insert(small.begin(), Preconditioner::ilu);
+    used = small.size() > 1 ? "ilu and chebyshev, the preconditioners auto chooses from by size"
+                            : "chebyshev, the preconditioner auto chooses on threads";
+    for (std::size_t k = 0; k < small.size(); ++k) {
+      std::vector<std::string> mine;
+      A = check_preconditioner(comm, where, small[k], mine);
+      if (k == 0) ignored = mine;
+      ignored.erase(std::remove_if(ignored.begin(), ignored.end(),
+                                   [&](const std::string& n) {
+                                     return std::find(mine.begin(), mine.end(), n) == mine.end();
+                                   }),
+                    ignored.end());
+    }
+    std::vector<std::string> none;
+    if (muelu_available()) A = check_preconditioner(comm, where, Preconditioner::muelu, none);
   } else {
-    A = check_preconditioner(comm, where, prec_type_);
+    A = check_preconditioner(comm, where, prec_type_, ignored);
+    used += ", the preconditioner used";
   }
+  if (!ignored.empty() && comm->getRank() == 0)
+    std::fprintf(stderr, "warning: %sSolver/Linear/Ifpack2: %s not read by %s\n", where.c_str(),
+                 quoted_list(ignored).c_str(), used.c_str());
   const std::string name = krylov_name();
   try {
     Belos::SolverFactory<double, MultiVector, Operator> factory;

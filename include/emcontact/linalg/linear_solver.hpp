@@ -127,6 +127,7 @@ class LinearSolver {
   bool refreshable_ = false;        ///< refresh_ and the preconditioner is muelu
   bool auto_ = false;               ///< preconditioner = auto: chosen at each build
   long long auto_dofs_ = 0;         ///< auto: muelu from this many equations
+  long long chebyshev_dofs_ = 0;    ///< auto on one thread: chebyshev from this many
   bool stale_ = false;              ///< prec_ is for an earlier structure: refresh
   Teuchos::RCP<Vector> positions_;  ///< node positions for the next multigrid build
 
@@ -147,11 +148,13 @@ class LinearSolver {
   Teuchos::RCP<Operator> make_muelu_with_modes(const Teuchos::RCP<Matrix>& A) const;
   /// preconditioner = auto: muelu for A of at least auto_dofs_ rows, else small_preconditioner.
   void choose_preconditioner(const Teuchos::RCP<Matrix>& A);
-  /// auto's choice below multigrid's size: ilu on one thread, chebyshev on more.
-  static Preconditioner small_preconditioner();
+  /// auto's choice below multigrid's size: chebyshev on 2+ threads or from chebyshev_dofs_
+  /// rows on, else ilu.
+  Preconditioner small_preconditioner(long long rows) const;
   void check_pass_through(const Teuchos::RCP<const Comm>& comm, const std::string& file);
   Teuchos::RCP<Matrix> check_preconditioner(const Teuchos::RCP<const Comm>& comm,
-                                            const std::string& where, Preconditioner type);
+                                            const std::string& where, Preconditioner type,
+                                            std::vector<std::string>& ignored);
 };
 
 }  // namespace emc::linalg

@@ -44,10 +44,12 @@ struct Box {
 
 /// The validated Solver/Linear list with the given preconditioner and near null space.
 Teuchos::ParameterList linear_parameters(const std::string& null_space,
-                                         const std::string& prec = "muelu", int from = 150000) {
+                                         const std::string& prec = "muelu", int from = 150000,
+                                         int chebyshev_from = 8000) {
   Teuchos::ParameterList p;
   p.set("preconditioner", prec);
   p.set("multigrid from equations", from);
+  p.set("chebyshev from equations", chebyshev_from);
   p.set("tolerance", 1e-10);
   p.set("multigrid near null space", null_space);
   p.validateParametersAndSetDefaults(*linalg::valid_linear_parameters());
@@ -165,19 +167,22 @@ TEST(ChebyshevSolve, ReachesTrueResidual) {
 }
 
 // preconditioner = auto takes muelu from `multigrid from equations` on (the box has 1029),
-// below it ilu on one thread and chebyshev on more, and both reach the true residual.
+// below it chebyshev on 2+ threads or from `chebyshev from equations` on, else ilu, and each
+// reaches the true residual.
 TEST(MueLuSolve, AutoChoosesBySize) {
   Box box(1e-2);
   const auto map = box.disc->owned_map();
   linalg::Elimination elim(map);
   const auto Ar = clamped(box, elim);
-  for (const int from : {1000, 2000}) {
-    linalg::LinearSolver solver(linear_parameters("rigid body modes", "auto", from),
-                                map->getComm());
-    EXPECT_TRUE(solver.uses_positions());
-    solve_random(solver, box, elim, Ar, "auto from " + std::to_string(from));
-    const std::string below = ExecSpace().concurrency() > 1 ? "chebyshev" : "ilu";
-    const std::string chosen = from <= 1029 && linalg::muelu_available() ? "muelu" : below;
-    EXPECT_NE(solver.description().find(chosen), std::string::npos) << solver.description();
-  }
+  for (const int from : {1000, 2000})
+    for (const int chebyshev_from : {500, 8000}) {
+      linalg::LinearSolver solver(
+          linear_parameters("rigid body modes", "auto", from, chebyshev_from), map->getComm());
+      EXPECT_TRUE(solver.uses_positions());
+      solve_random(solver, box, elim, Ar, "auto from " + std::to_string(from));
+      const bool threads = ExecSpace().concurrency() > 1;
+      const std::string below = threads || chebyshev_from <= 1029 ? "chebyshev" : "ilu";
+      const std::string chosen = from <= 1029 && linalg::muelu_available() ? "muelu" : below;
+      EXPECT_NE(solver.description().find(chosen), std::string::npos) << solver.description();
+    }
 }
