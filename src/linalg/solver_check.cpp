@@ -6,6 +6,7 @@
 #include <BelosTpetraAdapter.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <regex>
 #include <sstream>
 
@@ -94,21 +95,26 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
   RCP<Matrix> A;
   std::vector<std::string> ignored;
   std::string used = preconditioner_name(prec_type_);
-  if (auto_) {  // any of them may be chosen: each is tried; a name is ignored if all ignore it
-    std::vector<Preconditioner> small{Preconditioner::chebyshev};
-    if (ExecSpace().concurrency() == 1) small.insert(small.begin(), Preconditioner::ilu);
-    used = small.size() > 1 ? "ilu and chebyshev, the preconditioners auto chooses from by size"
-                            : "chebyshev, the preconditioner auto chooses on threads";
-    for (std::size_t k = 0; k < small.size(); ++k) {
+  if (auto_) {  // each one auto may choose is tried; a name is ignored if all of them ignore it
+    std::vector<Preconditioner> small{small_preconditioner(0)};
+    const Preconditioner large = small_preconditioner(std::numeric_limits<long long>::max());
+    if (large != small.front()) small.push_back(large);
+    used.clear();
+    for (const Preconditioner p : small) {
       std::vector<std::string> mine;
-      A = check_preconditioner(comm, where, small[k], mine);
-      if (k == 0) ignored = mine;
-      ignored.erase(std::remove_if(ignored.begin(), ignored.end(),
-                                   [&](const std::string& n) {
-                                     return std::find(mine.begin(), mine.end(), n) == mine.end();
-                                   }),
-                    ignored.end());
+      A = check_preconditioner(comm, where, p, mine);
+      if (p == small.front()) {
+        ignored = mine;
+      } else {
+        const auto read = [&](const std::string& n) {
+          return std::find(mine.begin(), mine.end(), n) == mine.end();
+        };
+        ignored.erase(std::remove_if(ignored.begin(), ignored.end(), read), ignored.end());
+      }
+      used += (used.empty() ? "" : " and ") + std::string(preconditioner_name(p));
     }
+    used += small.size() > 1 ? ", the preconditioners auto chooses from by size"
+                             : ", the preconditioner auto chooses";
     std::vector<std::string> none;
     if (muelu_available()) A = check_preconditioner(comm, where, Preconditioner::muelu, none);
   } else {
