@@ -2,6 +2,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
+#include <cstdint>
 #include <iterator>
 #include <map>
 
@@ -38,6 +39,29 @@ void flatten(std::vector<const PRow*> rows, std::vector<GO>& ids, std::vector<GO
       key.push_back(r->cols[k]);
     }
   }
+}
+
+/// Sorts (row, column) pairs and drops repeats. Packed into one 64-bit key where both fit in 32
+/// bits (every mesh MUMPS takes), which sorts about twice as fast as the pairs.
+void sort_unique(std::vector<std::pair<GO, GO>>& v) {
+  constexpr GO limit = GO(1) << 32;
+  const bool packable = std::all_of(v.begin(), v.end(), [&](const std::pair<GO, GO>& e) {
+    return e.first >= 0 && e.first < limit && e.second >= 0 && e.second < limit;
+  });
+  if (!packable) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return;
+  }
+  std::vector<std::uint64_t> keys(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k)
+    keys[k] =
+        static_cast<std::uint64_t>(v[k].first) << 32 | static_cast<std::uint64_t>(v[k].second);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  v.resize(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    v[k] = {static_cast<GO>(keys[k] >> 32), static_cast<GO>(keys[k] & 0xffffffffu)};
 }
 
 }  // namespace
@@ -206,8 +230,7 @@ void StructuredReduction::new_graph(const Matrix& A, const std::vector<char>& pl
   for (const auto& x : c) needed.emplace_back(x.k, x.l);
   for (std::size_t k = 0; k < x_rows_.size(); ++k) needed.emplace_back(x_rows_[k], x_cols_[k]);
   for (GO g : d_rows_) needed.emplace_back(g, g);
-  std::sort(needed.begin(), needed.end());
-  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  sort_unique(needed);
   std::vector<std::pair<GO, GO>> merged;
   if (merge)
     std::set_union(graph_extra_.begin(), graph_extra_.end(), needed.begin(), needed.end(),
@@ -254,37 +277,38 @@ RCP<FEGraph> StructuredReduction::make_graph(const Matrix& A, const std::vector<
   ids.insert(ids.end(), remote.begin(), remote.end());
   const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
   auto overlap = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(ids), 0, rows_map.getComm()));
-  Kokkos::DualView<std::size_t*, Node::device_type> count("emc::structured::count", ids.size());
   std::vector<std::size_t> first(ids.size() + 1, 0);  // each row's range in `extra`
   for (const auto& [r, g] : extra) ++first[r + 1];
   for (std::size_t r = 0; r < ids.size(); ++r) first[r + 1] += first[r];
-  std::vector<std::vector<GO>> cols(1);
-  auto& row = cols[0];
-  auto fill_row = [&](LO r) {  // plain entries (or A's row) and listed ones, no duplicates
-    row.clear();
-    if (r < n_own && (plain_row[r] || keep_graph_))
+  // each row once: plain entries (or A's row) and listed ones, no duplicates
+  std::vector<GO> cols;
+  std::vector<std::size_t> start(ids.size() + 1, 0);
+  cols.reserve(lA.nnz() + extra.size());
+  Kokkos::DualView<std::size_t*, Node::device_type> count("emc::structured::count", ids.size());
+  for (std::size_t r = 0; r < ids.size(); ++r) {
+    start[r] = cols.size();
+    if (static_cast<LO>(r) < n_own && (plain_row[r] || keep_graph_))
       for (auto e = lA.graph.row_map(r); e < lA.graph.row_map(r + 1); ++e)
         if (plain_col[lA.graph.entries(e)] || keep_graph_)
-          row.push_back(col_map.getGlobalElement(lA.graph.entries(e)));
-    const std::size_t n_plain = row.size();
-    for (std::size_t k = first[r]; k < first[r + 1]; ++k) row.push_back(extra[k].second);
+          cols.push_back(col_map.getGlobalElement(lA.graph.entries(e)));
+    const std::size_t n_plain = cols.size() - start[r];
+    for (std::size_t k = first[r]; k < first[r + 1]; ++k) cols.push_back(extra[k].second);
     if (first[r + 1] > first[r] && n_plain > 0) {
-      std::sort(row.begin(), row.end());
-      row.erase(std::unique(row.begin(), row.end()), row.end());
+      const auto b = cols.begin() + static_cast<std::ptrdiff_t>(start[r]);
+      std::sort(b, cols.end());
+      cols.erase(std::unique(b, cols.end()), cols.end());
     }
-  };
-  for (std::size_t r = 0; r < ids.size(); ++r) {
-    fill_row(static_cast<LO>(r));
-    count.h_view(r) = row.size();
+    count.h_view(r) = cols.size() - start[r];
   }
+  start[ids.size()] = cols.size();
   count.modify_host();
   count.sync_device();
   auto graph = rcp(new FEGraph(A.getRowMap(), overlap, count));
   graph->beginAssembly();
-  for (std::size_t r = 0; r < ids.size(); ++r) {
-    fill_row(static_cast<LO>(r));
-    graph->insertGlobalIndices(ids[r], Teuchos::ArrayView<const GO>(row));
-  }
+  for (std::size_t r = 0; r < ids.size(); ++r)
+    graph->insertGlobalIndices(ids[r], Teuchos::ArrayView<const GO>(
+                                           cols.data() + start[r],
+                                           static_cast<Teuchos::Ordinal>(start[r + 1] - start[r])));
   graph->endAssembly();
   return graph;
 }
