@@ -41,29 +41,6 @@ void flatten(std::vector<const PRow*> rows, std::vector<GO>& ids, std::vector<GO
   }
 }
 
-/// Sorts (row, column) pairs and drops repeats. Packed into one 64-bit key where both fit in 32
-/// bits (every mesh MUMPS takes), which sorts about twice as fast as the pairs.
-void sort_unique(std::vector<std::pair<GO, GO>>& v) {
-  constexpr GO limit = GO(1) << 32;
-  const bool packable = std::all_of(v.begin(), v.end(), [&](const std::pair<GO, GO>& e) {
-    return e.first >= 0 && e.first < limit && e.second >= 0 && e.second < limit;
-  });
-  if (!packable) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    return;
-  }
-  std::vector<std::uint64_t> keys(v.size());
-  for (std::size_t k = 0; k < v.size(); ++k)
-    keys[k] =
-        static_cast<std::uint64_t>(v[k].first) << 32 | static_cast<std::uint64_t>(v[k].second);
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  v.resize(keys.size());
-  for (std::size_t k = 0; k < keys.size(); ++k)
-    v[k] = {static_cast<GO>(keys[k] >> 32), static_cast<GO>(keys[k] & 0xffffffffu)};
-}
-
 }  // namespace
 
 void StructuredReduction::set(Teuchos::RCP<const Vector> keep, const std::vector<GO>& fixed,
@@ -230,7 +207,7 @@ void StructuredReduction::new_graph(const Matrix& A, const std::vector<char>& pl
   for (const auto& x : c) needed.emplace_back(x.k, x.l);
   for (std::size_t k = 0; k < x_rows_.size(); ++k) needed.emplace_back(x_rows_[k], x_cols_[k]);
   for (GO g : d_rows_) needed.emplace_back(g, g);
-  sort_unique(needed);
+  sort_unique_entries(needed);
   std::vector<std::pair<GO, GO>> merged;
   if (merge)
     std::set_union(graph_extra_.begin(), graph_extra_.end(), needed.begin(), needed.end(),
@@ -394,6 +371,28 @@ void StructuredReduction::segments(const std::vector<int>& pos,
   for (std::size_t k = 0; k < pos.size(); ++k) o[first[pos[k]]++] = static_cast<int>(k);
   order = to_view("emc::structured::order", o);
   seg = to_view("emc::structured::seg", starts);
+}
+
+// Packed into one 64-bit key where both ids fit in 32 bits (every mesh MUMPS takes).
+void sort_unique_entries(std::vector<std::pair<GO, GO>>& v) {
+  constexpr GO limit = GO(1) << 32;
+  const bool packable = std::all_of(v.begin(), v.end(), [&](const std::pair<GO, GO>& e) {
+    return e.first >= 0 && e.first < limit && e.second >= 0 && e.second < limit;
+  });
+  if (!packable) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return;
+  }
+  std::vector<std::uint64_t> keys(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k)
+    keys[k] =
+        static_cast<std::uint64_t>(v[k].first) << 32 | static_cast<std::uint64_t>(v[k].second);
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  v.resize(keys.size());
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    v[k] = {static_cast<GO>(keys[k] >> 32), static_cast<GO>(keys[k] & 0xffffffffu)};
 }
 
 RCP<Matrix> StructuredReduction::apply(const Matrix& A) {

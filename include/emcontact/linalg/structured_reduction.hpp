@@ -8,6 +8,7 @@
 // one pass over those contributions into an FECrsMatrix on a graph built once, whose rows
 // owned elsewhere (a master dof of another rank) are exported like assembled ones.
 #include <Teuchos_RCP.hpp>
+#include <utility>
 #include <vector>
 
 #include "emcontact/linalg/masked_reduction.hpp"
@@ -32,6 +33,9 @@ struct Entry {
 struct RowSpan {
   int begin = 0, end = 0;
 };
+
+/// Sorts (row, column) pairs and drops repeats (the entries a new graph needs).
+void sort_unique_entries(std::vector<std::pair<GO, GO>>& v);
 
 class StructuredReduction {
  public:

@@ -11,6 +11,7 @@
 
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/p_matrix.hpp"
+#include "emcontact/linalg/structured_reduction.hpp"
 
 using namespace emc;
 
@@ -529,6 +530,25 @@ TEST(Elimination, StructuredPathKeepsAGraphThatHasTheEntries) {
                       if (pass == 2) second = Ar.get();
                       if (pass == 3) EXPECT_EQ(Ar.get(), second);
                     });
+}
+
+// The entries of a new graph, sorted and unique: packed into 64-bit keys where row and column
+// fit in 32 bits, as pairs where one does not (ids of 2^32 and more); both as std::sort and
+// std::unique give.
+TEST(Elimination, SortUniqueEntriesWithAndWithoutPacking) {
+  std::mt19937 rng(7);
+  for (const GO big : {GO(0), (GO(1) << 32) + 5}) {
+    std::vector<std::pair<GO, GO>> v;
+    for (int k = 0; k < 2000; ++k)
+      v.emplace_back(static_cast<GO>(rng() % 50), static_cast<GO>(rng() % 4000000000u));
+    for (int k = 0; k < 200; ++k) v.push_back(v[rng() % v.size()]);  // repeats
+    if (big > 0) v.emplace_back(3, big);
+    auto expect = v;
+    std::sort(expect.begin(), expect.end());
+    expect.erase(std::unique(expect.begin(), expect.end()), expect.end());
+    linalg::sort_unique_entries(v);
+    EXPECT_EQ(v, expect) << "largest id " << big;
+  }
 }
 
 // P made from its rows in local arrays (docs/THEORY.md §3.1): a repeated column adds its
