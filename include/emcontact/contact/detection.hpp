@@ -42,9 +42,11 @@ struct Entry {
   double outside = 0;     ///< barycentric, of the crossing point
   bool extended = false;  ///< the crossing point lies in the edge extension only
   bool side = false;      ///< the facet does not face the node (crossed strictly inside)
+  bool beside = false;    ///< its plane is crossed beside it, the node ends strictly inside it
 
   KOKKOS_INLINE_FUNCTION bool before(const Entry& o) const {
     if (crossing != o.crossing) return crossing;
+    if (beside != o.beside) return !beside;
     if (side != o.side) return !side;
     if (extended != o.extended) return !extended;
     if (s != o.s) return s < o.s;
@@ -89,8 +91,11 @@ KOKKOS_INLINE_FUNCTION bool outside_master(const FacetGrid& grid1, const Facets&
 /// (|n_f . ns| <= facing) is a candidate when crossed strictly inside, after the facing ones. A
 /// facet that takes the node only through the edge extension, or a side facet, is refused when
 /// the node lies on another facing facet (inside it, 0 <= g_N <= edge times its size): the node
-/// passes over that facet's edge. A node behind a facet it did not cross is refused when it
-/// lies outside the master (detail::outside_master).
+/// passes over that facet's edge. A node that crosses a facet's plane beside it (the point lies
+/// beyond the edge extension: it came over a neighbour, moving along the surface) and ends
+/// strictly inside it is a candidate after those crossed inside. A node behind a facet it did
+/// not cross, or crossed beside, is refused when it lies outside the master
+/// (detail::outside_master).
 template <class Facets, class X>
 KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& facets, const X& x0,
                                          const X& x1, int s, const double ns[3],
@@ -117,18 +122,24 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
     e.s = e.crossing ? g0 / (g0 - h1.gap) : 0.0;
     // where the node crosses the facet's plane (flat facets, linear motion over the step)
     const double xic[2] = {xi0[0] + e.s * (h1.xi[0] - xi0[0]), xi0[1] + e.s * (h1.xi[1] - xi0[1])};
-    const double outc = e.crossing ? kernels::facet_outside(xic) : out1;
+    double outc = e.crossing ? kernels::facet_outside(xic) : out1;
+    // crossed beside the facet (over a neighbour, moving along the surface) and ending strictly
+    // inside it: the node entered the master and is caught here, where it lies inside it
+    e.beside = e.crossing && outc > rule.edge && out1 <= rule.strict;
+    if (e.beside) outc = out1;
     if (outc > rule.edge) return;
     e.outside = outc > 0 ? outc : 0.0;
     e.extended = outc > rule.strict || out1 > rule.strict;
     if (e.extended && !e.crossing) return;  // the extension is for entries over the edge only
     e.side = side;
-    if (side && (e.extended || !e.crossing)) return;  // a side facet: crossed strictly inside
+    if (side && (e.extended || e.beside || !e.crossing)) return;  // side: crossed strictly inside
     if (!any || e.before(best)) best = e;
     any = true;
   });
-  if (!any || ((best.extended || best.side) && covered)) return Hit{};
-  if (!best.crossing && detail::outside_master(grid1, facets, x1, y1, best.hit, rule)) return Hit{};
+  if (!any || ((best.extended || best.side || best.beside) && covered)) return Hit{};
+  if ((!best.crossing || best.beside) &&
+      detail::outside_master(grid1, facets, x1, y1, best.hit, rule))
+    return Hit{};
   best.hit.inside = true;
   return best.hit;
 }

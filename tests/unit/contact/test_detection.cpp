@@ -188,6 +188,23 @@ TEST(EnteredFacet, NodeInTheSliverOfAnAcuteEdge) {
   EXPECT_GT(c.normal(h.facet)[0], 0.99);
 }
 
+// A node sliding along the top face as it enters it (the corner of a tumbling cube landing on
+// a block): it crosses the face's plane over one of the face's two triangles and ends strictly
+// inside the other, beyond the first one's edge extension. Neither triangle took it both by its
+// crossing point and by its end CPP, so it stayed free inside the master (caught a step later
+// from beside, 3.1e-3 deep). It is caught on the triangle it ends in, at its depth there.
+TEST(EnteredFacet, NodeSlidingOverTheEdgeBetweenTwoFacets) {
+  Cube c;
+  const double ns[3] = {0, 0, -1};
+  const double y0[3] = {0.6, 0.4, 1.001}, y1[3] = {0.4, 0.6, 0.997};
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_EQ(h.facet, 3);  // (4, 7, 6): y > x on the top face
+  EXPECT_NEAR(h.gap, -3e-3, 1e-12);
+  // the same slide above the face is not caught
+  const double z1[3] = {0.4, 0.6, 1.0005};
+  EXPECT_LT(c.enter(y0, z1, ns).facet, 0);
+}
+
 // facet_clamp gives the closest point of the triangle (brute force over a fine sampling).
 TEST(FacetClamp, MatchesBruteForce) {
   std::mt19937 rng(3);
