@@ -48,11 +48,11 @@ int main(int argc, char** argv) {
       std::printf(
           "emcontact: %lld tets, %lld nodes on %d rank(s); setup %.3f s; %ld steps to "
           "t = %.6g in %.3f s (%.4f s/step, %.2f Newton iterations/step); total %.3f "
-          "s; max |E-E0|/|E0| = %.3e (|E0| or, if 0, max K+W+|Pi|); output in %s\n",
+          "s; max |%s-E0|/|E0| = %.3e (|E0| or, if 0, max K+W+|Pi|); output in %s\n",
           s.tets, s.nodes, comm->getSize(), s.setup_seconds, s.steps, s.time, s.stepping_seconds,
           s.steps ? s.stepping_seconds / s.steps : 0.0,
           s.steps ? double(s.newton_iterations) / s.steps : 0.0, wall.totalElapsedTime(true),
-          s.max_energy_error, s.output_dir.c_str());
+          s.dissipates ? "E+D" : "E", s.max_energy_error, s.output_dir.c_str());
       if (s.contact_nodes > 0)
         std::printf(
             "emcontact: %lld contact nodes per rank (%lld owned by other ranks), %lld bytes "

@@ -7,13 +7,15 @@ namespace emc::app {
 Progress::Progress(bool enabled, double end_time)
     : enabled_(enabled), tty_(isatty(fileno(stderr)) != 0), end_(end_time) {}
 
-void Progress::update(long step, double t, double dt, int newton, double energy_error, int active) {
+void Progress::update(long step, double t, double dt, int newton, double energy_error, int active,
+                      bool dissipates) {
   if (!enabled_) return;
   char buf[200];
   const int n = std::snprintf(buf, sizeof buf,
                               "step %7ld  t = %-11.5g (%5.1f%%)  dt = %-9.3g  newton %2d  "
-                              "|E-E0|/|E0| = %-9.2e  contacts %d",
-                              step, t, 100.0 * t / end_, dt, newton, energy_error, active);
+                              "|%s-E0|/|E0| = %-9.2e  contacts %d",
+                              step, t, 100.0 * t / end_, dt, newton, dissipates ? "E+D" : "E",
+                              energy_error, active);
   if (tty_) {
     std::string line(buf, n > 0 ? static_cast<std::size_t>(n) : 0);
     if (line.size() < width_) line.append(width_ - line.size(), ' ');

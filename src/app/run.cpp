@@ -309,8 +309,11 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
       }
       const auto row = monitor_row(disc, state, rep);
       escale = energy_scale(row0, row, escale);
-      const double err = std::fabs(row.total - row0.total) / escale;
+      // docs/THEORY.md §11.2: with friction E + D is what is conserved (D = 0 without it)
+      const double err =
+          std::fabs(row.total + row.dissipated - row0.total - row0.dissipated) / escale;
       sum.max_energy_error = std::max(sum.max_energy_error, err);
+      sum.dissipates |= row.dissipated != row0.dissipated;
       sum.newton_iterations += rep.newton_iterations;
       if (root) {
         Teuchos::TimeMonitor t(*Teuchos::TimeMonitor::getNewTimer("emcontact: output"));
@@ -328,7 +331,8 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
         sim->elim->forget_graph();
       }
-      progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active);
+      progress.update(state.step, state.t, rep.dt, rep.newton_iterations, err, rep.contact.active,
+                      sum.dissipates);
       if (time::stop_requested(*comm)) stop_on_sigterm();  // every rank at the same step
     }
   } catch (const RunError& e) {  // collective: every rank stops at the same step

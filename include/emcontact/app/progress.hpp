@@ -9,7 +9,9 @@ namespace emc::app {
 class Progress {
  public:
   Progress(bool enabled, double end_time);
-  void update(long step, double t, double dt, int newton, double energy_error, int active);
+  /// energy_error: |E + D - E0| / |E0|, labelled E + D once friction has dissipated (D > 0)
+  void update(long step, double t, double dt, int newton, double energy_error, int active,
+              bool dissipates);
   void finish();
 
  private:

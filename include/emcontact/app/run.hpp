@@ -30,7 +30,8 @@ struct Summary {
   long steps = 0;
   double time = 0;
   int newton_iterations = 0;
-  double max_energy_error = 0;  ///< max_n |E_n - E_0| / |E_0|
+  double max_energy_error = 0;  ///< max_n |E_n + D_n - E_0 - D_0| / |E_0| (D: friction's work)
+  bool dissipates = false;      ///< friction dissipated energy in the run (D changed)
   std::string output_dir;
   long long tets = 0, nodes = 0;
   double setup_seconds = 0, stepping_seconds = 0;  ///< wall time before / in the time loop
