@@ -50,27 +50,35 @@ def point_triangle_distance(p, a, b, c):
     return np.sqrt(((p - q) ** 2).sum(-1))
 
 
-def inside_depths(x, tets, faces, nodes):
-    """Depth of each of `nodes` inside the body (tets, boundary faces) at positions x; 0 outside."""
+def inside_depths(x, tets, faces, nodes, block=4000000):
+    """Depth of each of `nodes` inside the body (tets, boundary faces) at positions x; 0 outside.
+    Nodes are tested in blocks of at most `block` (node, tet) pairs, so memory stays bounded on
+    large meshes."""
     depth = np.zeros(len(nodes))
-    if len(nodes) == 0:
-        return depth
-    p = x[nodes]
     v = x[tets]  # (T, 4, 3)
     lo, hi = v.min(1), v.max(1)
-    cand = np.all((p[:, None, :] >= lo[None]) & (p[:, None, :] <= hi[None]), axis=2)  # (N, T)
-    ni, ti = np.nonzero(cand)
-    if len(ni) == 0:
-        return depth
-    T = v[ti]
-    M = np.stack([T[:, 1] - T[:, 0], T[:, 2] - T[:, 0], T[:, 3] - T[:, 0]], axis=2)
-    lam = np.linalg.solve(M, (p[ni] - T[:, 0])[..., None])[..., 0]
-    tol = 1e-12
-    ok = np.all(lam > tol, axis=1) & (lam.sum(1) < 1 - tol)
-    hit = np.unique(ni[ok])
-    if len(hit):
-        a, b, c = x[faces[:, 0]], x[faces[:, 1]], x[faces[:, 2]]
-        depth[hit] = point_triangle_distance(p[hit], a, b, c).min(axis=1)
+    p_all = x[nodes]
+    near = np.nonzero(np.all((p_all >= lo.min(0)) & (p_all <= hi.max(0)), axis=1))[0]
+    a, b, c = x[faces[:, 0]], x[faces[:, 1]], x[faces[:, 2]]
+    step = max(1, block // max(1, len(tets)))
+    for k in range(0, len(near), step):
+        idx = near[k:k + step]
+        p = p_all[idx]
+        cand = np.all((p[:, None, :] >= lo[None]) & (p[:, None, :] <= hi[None]), axis=2)
+        ni, ti = np.nonzero(cand)
+        if len(ni) == 0:
+            continue
+        T = v[ti]
+        M = np.stack([T[:, 1] - T[:, 0], T[:, 2] - T[:, 0], T[:, 3] - T[:, 0]], axis=2)
+        good = np.abs(np.linalg.det(M)) > 0  # a flat tetrahedron holds no point
+        lam = np.zeros((len(ni), 3))
+        lam[good] = np.linalg.solve(M[good], (p[ni[good]] - T[good, 0])[..., None])[..., 0]
+        tol = 1e-12
+        ok = good & np.all(lam > tol, axis=1) & (lam.sum(1) < 1 - tol)
+        hit = np.unique(ni[ok])
+        for j in range(0, len(hit), max(1, block // max(1, len(faces)))):
+            h = hit[j:j + max(1, block // max(1, len(faces)))]
+            depth[idx[h]] = point_triangle_distance(p[h], a, b, c).min(axis=1)
     return depth
 
 
