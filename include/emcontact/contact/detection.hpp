@@ -123,8 +123,9 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
     // where the node crosses the facet's plane (flat facets, linear motion over the step)
     const double xic[2] = {xi0[0] + e.s * (h1.xi[0] - xi0[0]), xi0[1] + e.s * (h1.xi[1] - xi0[1])};
     double outc = e.crossing ? kernels::facet_outside(xic) : out1;
-    // crossed beside the facet (over a neighbour, moving along the surface) and ending strictly
-    // inside it: the node entered the master and is caught here, where it lies inside it
+    // docs/THEORY.md §6.3, crossing beside a facet: crossed over a neighbour (moving along the
+    // surface) and ending strictly inside it, the node entered the master: caught here where it
+    // lies inside the master
     e.beside = e.crossing && outc > rule.edge && out1 <= rule.strict;
     if (e.beside) outc = out1;
     if (outc > rule.edge) return;
