@@ -1,12 +1,13 @@
 // DirectUmfpack: the UMFPACK calls (symbolic, numeric, solve) and their errors. UMFPACK takes a
-// matrix by columns; the rows of A (Tpetra's local CSR in global numbering) are the columns of
-// A^T, so UMFPACK factors A^T and solves with its transpose (UMFPACK_At): A x = b.
+// matrix by columns: the entries of A (Tpetra's local CSR in global numbering) are sorted by
+// column once per structure, so that UMFPACK factors A itself and solves A x = b with its
+// forward triangular solves (UMFPACK_A), cheaper than the transposed ones (UMFPACK_At) that
+// factoring A^T, Tpetra's rows as columns, would need (perf/README.md, "Sparse direct solvers").
 #include "emcontact/linalg/direct_umfpack.hpp"
 
 #include <suitesparse/umfpack.h>
 
 #include <Teuchos_TimeMonitor.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <numeric>
@@ -41,7 +42,7 @@ const char* meaning(int status) {
 
 struct DirectUmfpack::State {
   RCP<const Graph> graph;         ///< held, so that its address cannot be reused
-  std::vector<int> Bp, Bi;        ///< A^T by columns = A by rows, global numbering, sorted
+  std::vector<int> Bp, Bi;        ///< A by columns, global numbering, rows sorted
   std::vector<std::size_t> perm;  ///< entry p of Bi/Bx is Tpetra's local value perm[p]
   std::vector<GO> rows, cols;     ///< global row and column of each Tpetra entry (structure)
   std::vector<LO> row_of;         ///< local row of global row g
@@ -71,6 +72,11 @@ DirectUmfpack::DirectUmfpack(const RCP<const Comm>& comm) : s_(std::make_unique<
   // no iterative refinement: LinearSolver checks the true residual of every solve, and GMRES
   // on reused factors refines anyway
   s_->control[UMFPACK_IRSTEP] = 0;
+  // the symmetric strategy (AMD on A + A^T, diagonal pivots preferred): the reduced matrix has
+  // the symmetric pattern of a finite-element matrix but for the contact rows, and its factors
+  // fill less than the column ordering `auto` picks for it (perf/README.md, "Sparse direct
+  // solvers")
+  s_->control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
 }
 
 DirectUmfpack::~DirectUmfpack() {
@@ -113,29 +119,31 @@ void DirectUmfpack::analyse(const RCP<const Matrix>& A) {
   s_->rows.resize(nnz);
   s_->cols.resize(nnz);
   s_->row_of.assign(n, -1);
-  s_->Bp.assign(n + 1, 0);
   for (LO i = 0; i < lA.numRows(); ++i) {
     const GO g = rows.getGlobalElement(i);
     s_->row_of[g] = i;
-    s_->Bp[g + 1] = static_cast<int>(lA.graph.row_map(i + 1) - lA.graph.row_map(i));
     for (auto e = lA.graph.row_map(i); e < lA.graph.row_map(i + 1); ++e) {
       s_->rows[e] = g;
       s_->cols[e] = cols.getGlobalElement(lA.graph.entries(e));
     }
   }
-  std::partial_sum(s_->Bp.begin(), s_->Bp.end(), s_->Bp.begin());
-  // each row's entries in ascending global column, as UMFPACK asks of a column
+  // A by columns: a counting sort of the entries by global column; walking the rows in
+  // ascending global order leaves each column's rows sorted, as UMFPACK asks
+  std::vector<int> Ap(n + 1, 0);
+  for (std::size_t e = 0; e < nnz; ++e) ++Ap[s_->cols[e] + 1];
+  std::partial_sum(Ap.begin(), Ap.end(), Ap.begin());
   s_->perm.resize(nnz);
   s_->Bi.resize(nnz);
+  std::vector<int> next(Ap.begin(), Ap.end() - 1);
   for (GO g = 0; g < n; ++g) {
     const LO i = s_->row_of[g];
-    const std::size_t first = lA.graph.row_map(i);
-    auto* p = s_->perm.data() + s_->Bp[g];
-    const int len = s_->Bp[g + 1] - s_->Bp[g];
-    std::iota(p, p + len, first);
-    std::sort(p, p + len, [&](std::size_t a, std::size_t b) { return s_->cols[a] < s_->cols[b]; });
-    for (int k = 0; k < len; ++k) s_->Bi[s_->Bp[g] + k] = static_cast<int>(s_->cols[p[k]]);
+    for (auto e = lA.graph.row_map(i); e < lA.graph.row_map(i + 1); ++e) {
+      const int q = next[s_->cols[e]]++;
+      s_->perm[q] = e;
+      s_->Bi[q] = static_cast<int>(g);
+    }
   }
+  s_->Bp = std::move(Ap);
   s_->Bx.assign(nnz, 0.0);
   s_->b.resize(n);
   s_->x.resize(n);
@@ -182,7 +190,7 @@ void DirectUmfpack::solve(const Vector& b, Vector& x) {
     const auto bv = b.getLocalViewHost(Tpetra::Access::ReadOnly);
     for (std::size_t g = 0; g < n; ++g) s_->b[g] = bv(s_->row_of[g], 0);
   }
-  const int status = umfpack_di_wsolve(UMFPACK_At, s_->Bp.data(), s_->Bi.data(), s_->Bx.data(),
+  const int status = umfpack_di_wsolve(UMFPACK_A, s_->Bp.data(), s_->Bi.data(), s_->Bx.data(),
                                        s_->x.data(), s_->b.data(), s_->numeric, s_->control,
                                        s_->info, s_->Wi.data(), s_->W.data());
   if (status != UMFPACK_OK) {
