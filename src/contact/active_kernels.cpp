@@ -153,9 +153,9 @@ void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
                          Kokkos::View<int*, ExecSpace> leaving,
                          Kokkos::View<int*, ExecSpace> slave_k,
                          Kokkos::View<int*, ExecSpace> current, Positions x0, Positions x1,
-                         Positions xh, const EntryRule& rule, Values3 xs1,
+                         Positions xh, const EntryRule& rule, bool keep_behind, Values3 xs1,
                          Kokkos::View<double* [2], ExecSpace> xi, Values outside,
-                         Kokkos::View<int*, ExecSpace> next) {
+                         Kokkos::View<int*, ExecSpace> next, Kokkos::View<int*, ExecSpace> behind) {
   const FacetGrid grid = grid_h;  // by value: Views only
   const LocalSlaves sl = ls;
   const EntryRule r = rule;
@@ -169,12 +169,18 @@ void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
         const double y[3] = {xh(a.s, 0), xh(a.s, 1), xh(a.s, 2)};
         const Hit h = next_facet(grid, y, n_s, r);
         next(j) = -1;
+        behind(j) = 0;
         if (h.facet < 0 || h.facet == current(j)) return;
         next(j) = h.facet;
         for (int i = 0; i < 3; ++i) a.m[i] = facets(h.facet, i);
         Geometry e(x0, x1, a);
+        // docs/THEORY.md §7.2: the slave at t_n behind the new facet (over a convex kink of
+        // the master); in the closure's fallback a closing node keeps its gap there
+        double xi0[2], g0;
+        behind(j) = kernels::facet_cpp(e.y0, e.xm0, xi0, g0) && g0 < -gap_roundoff(a.edge, e.y0);
+        const bool closes = a.closes != 0 && !(keep_behind && behind(j));
         double z[2] = {h.xi[0], h.xi[1]};
-        outside(k) = kernels::frictionless_project(e.y0, e.y1, e.xm0, e.xm1, z, a.closes != 0);
+        outside(k) = kernels::frictionless_project(e.y0, e.y1, e.xm0, e.xm1, z, closes);
         for (int c = 0; c < 3; ++c) xs1(k, c) = e.y1[c];
         xi(k, 0) = z[0];
         xi(k, 1) = z[1];

@@ -38,6 +38,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   bool swept = false;
   bool warm = false;      // §6.1-§6.2: a re-solve starts from the last solution
   bool search = search_;  // §6.9: search the set, then solve it to the full tolerance
+  constraints_.set_keep_behind(fallback_);
   for (;;) {
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
@@ -98,10 +99,13 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
         next.push_back(trial[k]);
       }
     }
-    for (const auto& a : fresh) {
+    for (auto a : fresh) {
       if (released.count(a.slave)) {  // released in this step and penetrating again: keep it
         pinned.insert(a.slave);
         ++out.stats.reactivated;
+        // docs/THEORY.md §7.2: in the closure's fallback it keeps its gap (it may end the step
+        // in tension, where no compressive impulse gives its closure work back)
+        if (fallback_) a.keep_gap = true;
       }
       next.push_back(a);
     }

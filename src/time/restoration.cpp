@@ -79,7 +79,10 @@ Restoration EnergyRestoration::restore(const Vector& p, double D, double roundof
   const auto map = disc_.owned_map();
   Vector pf(map), dv(map);
   pf.elementWiseMultiply(1.0, *free_, p, 0.0);
-  if (pf.normInf() == 0) return r;
+  if (pf.normInf() == 0) {  // no compressive entry to push along: the energy cannot go back
+    r.ok = false;
+    return r;
+  }
   // dv = M_ff^-1 p_f by CG with the inverse lumped mass (M is well conditioned)
   using Problem = Belos::LinearProblem<double, MultiVector, Operator>;
   auto problem = rcp(new Problem(rcp(new FreeMass(disc_, free_)), Teuchos::rcpFromRef(dv),

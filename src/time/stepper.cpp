@@ -135,6 +135,7 @@ StepReport Stepper::advance() {
   const Vector& u0 = *s_.u;
   Vector u1(u0.getMap());
   newton_.set_contraction(s_.newton_contraction);
+  bool fallback = false;  // docs/THEORY.md §7.4: the closure's fallback, once it was needed
   for (;;) {
     // the last step is shortened to end at Time/end, unless only by round-off of the sum of
     // the steps: then it is dt itself, as in a run with a later end (an extended run goes on
@@ -144,6 +145,7 @@ StepReport Stepper::advance() {
     check_step_size(h);
     Vector V1(*s_.V, Teuchos::Copy);
     bool restored = true;
+    if (loop_) loop_->set_closure_fallback(fallback);
     const bool solved = solve_step(h, u1, rep);
     if (solved) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n
@@ -170,6 +172,11 @@ StepReport Stepper::advance() {
         s_.good_steps = 0;
       }
       return rep;
+    }
+    if (solved && !restored && !fallback) {  // §7.4: the same step, closing less
+      fallback = true;
+      ++rep.closure_fallbacks;
+      continue;
     }
     ++rep.cuts;
     if (s_.dt < dt_ / std::ldexp(1.0, max_cuts_) * 1.5) {

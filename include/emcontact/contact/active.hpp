@@ -19,7 +19,8 @@ struct Active {
   int facet = -1;  ///< facet id in the pair
   double xi[2] = {0, 0};
   bool off = false;  ///< frictionless: outside every facet by more than tol_f (released at the end)
-  bool keep_gap = false;  ///< not closed although its pair closes gaps (re-activated, §7.2)
+  bool keep_gap = false;  ///< not closed although its pair closes gaps (§7.2: behind its facet,
+                          ///< or kept by the closure's fallback)
   // Coulomb friction (docs/THEORY.md §11)
   bool slip = false;          ///< slides (frictionless constraint plus friction) or sticks
   int returns = 0;            ///< returns to stick in this step (§11.4, at most kMaxReturns)

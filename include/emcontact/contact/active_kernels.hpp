@@ -79,15 +79,17 @@ void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1
 /// my slaves' index slave_k(j) in `ls`): the facet facing the slave whose CPP at n+1/2 is inside,
 /// the nearest (next_facet on grid_h, the pair's facets at xh = n+1/2; local index current(j) is
 /// the entry's own); if another is found, xi, xs1 and outside become those of steps 2-3 on it
-/// and next(j) its local index, else next(j) = -1.
+/// and next(j) its local index, else next(j) = -1. behind(j) = 1 where the slave at t_n lies
+/// behind the new facet beyond round-off; with keep_behind (the closure's fallback,
+/// docs/THEORY.md §7.2) such an entry is not closed on it.
 void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
                          Kokkos::View<int* [3], ExecSpace> facets, Refs refs,
                          Kokkos::View<int*, ExecSpace> leaving,
                          Kokkos::View<int*, ExecSpace> slave_k,
                          Kokkos::View<int*, ExecSpace> current, Positions x0, Positions x1,
-                         Positions xh, const EntryRule& rule, Values3 xs1,
+                         Positions xh, const EntryRule& rule, bool keep_behind, Values3 xs1,
                          Kokkos::View<double* [2], ExecSpace> xi, Values outside,
-                         Kokkos::View<int*, ExecSpace> next);
+                         Kokkos::View<int*, ExecSpace> next, Kokkos::View<int*, ExecSpace> behind);
 
 /// §5 blocks P, Pt, X of every frictionless entry at (x0, x1), g the contactless residual.
 void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
