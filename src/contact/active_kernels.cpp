@@ -153,9 +153,9 @@ void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
                          Kokkos::View<int*, ExecSpace> leaving,
                          Kokkos::View<int*, ExecSpace> slave_k,
                          Kokkos::View<int*, ExecSpace> current, Positions x0, Positions x1,
-                         Positions xh, const EntryRule& rule, bool keep_behind, Values3 xs1,
+                         Positions xh, const EntryRule& rule, Values3 xs1,
                          Kokkos::View<double* [2], ExecSpace> xi, Values outside,
-                         Kokkos::View<int*, ExecSpace> next, Kokkos::View<int*, ExecSpace> behind) {
+                         Kokkos::View<int*, ExecSpace> next) {
   const FacetGrid grid = grid_h;  // by value: Views only
   const LocalSlaves sl = ls;
   const EntryRule r = rule;
@@ -169,18 +169,12 @@ void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
         const double y[3] = {xh(a.s, 0), xh(a.s, 1), xh(a.s, 2)};
         const Hit h = next_facet(grid, y, n_s, r);
         next(j) = -1;
-        behind(j) = 0;
         if (h.facet < 0 || h.facet == current(j)) return;
         next(j) = h.facet;
         for (int i = 0; i < 3; ++i) a.m[i] = facets(h.facet, i);
         Geometry e(x0, x1, a);
-        // docs/THEORY.md §7.2: the slave at t_n behind the new facet (over a convex kink of
-        // the master); in the closure's fallback a closing node keeps its gap there
-        double xi0[2], g0;
-        behind(j) = kernels::facet_cpp(e.y0, e.xm0, xi0, g0) && g0 < -gap_roundoff(a.edge, e.y0);
-        const bool closes = a.closes != 0 && !(keep_behind && behind(j));
         double z[2] = {h.xi[0], h.xi[1]};
-        outside(k) = kernels::frictionless_project(e.y0, e.y1, e.xm0, e.xm1, z, closes);
+        outside(k) = kernels::frictionless_project(e.y0, e.y1, e.xm0, e.xm1, z, a.closes != 0);
         for (int c = 0; c < 3; ++c) xs1(k, c) = e.y1[c];
         xi(k, 0) = z[0];
         xi(k, 1) = z[1];
@@ -244,8 +238,8 @@ void start_points(Refs refs, Positions x0, Kokkos::View<double* [2], ExecSpace> 
 }
 
 // docs/THEORY.md §7.4.
-ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn,
-                           Values3 N1) {
+ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn, Values3 N1,
+                           Kokkos::View<int*, ExecSpace> unrestorable) {
   ClosureTerms sum;
   Kokkos::parallel_reduce(
       "emcontact::contact::closure_terms", Policy(0, count(refs)),
@@ -256,23 +250,29 @@ ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Val
         const auto& xm1 = e.xm1;
         const auto& y0 = e.y0;
         const auto& y1 = e.y1;
-        double N[3];
+        double N[3], w_e = 0;
         kernels::facet_shape(a.xi, N);
         for (int c = 0; c < 3; ++c) {
           double rel = y1[c] - y0[c];
           for (int i = 0; i < 3; ++i) rel -= N[i] * (xm1[i][c] - xm0[i][c]);
-          work += F(k, c) * rel;
+          w_e += F(k, c) * rel;
         }
+        work += w_e;
         // closing a gap at the round-off of the coordinates moves nothing: W_c below the sum
         // of these is no energy to give back (nodes deeper keep their gap, §7.2)
-        roundoff += (kernels::fabs(F(k, 0)) + kernels::fabs(F(k, 1)) + kernels::fabs(F(k, 2))) *
-                    gap_roundoff(a.edge, y1);
+        const double r_e =
+            (kernels::fabs(F(k, 0)) + kernels::fabs(F(k, 1)) + kernels::fabs(F(k, 2))) *
+            gap_roundoff(a.edge, y1);
+        roundoff += r_e;
         double xi1[2], gap;
         for (int c = 0; c < 3; ++c) wn(k, c) = N1(k, c) = 0;
+        // §7.2, the closure's fallback: energy this entry gave, or took without an impulse
+        unrestorable(k) = kernels::fabs(w_e) > r_e;
         if (!kernels::facet_cpp(y1, xm1, xi1, gap)) return;
         const kernels::Facet f1 = kernels::facet(xm1);
         const double w =
             kernels::fmax(0.0, F(k, 0) * f1.n[0] + F(k, 1) * f1.n[1] + F(k, 2) * f1.n[2]);
+        unrestorable(k) = w_e > r_e || (w == 0 && -w_e > r_e);
         double M[3];
         kernels::facet_shape(xi1, M);
         for (int c = 0; c < 3; ++c) {

@@ -20,6 +20,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   for (auto& a : trial) {  // docs/THEORY.md §11.4: per step
     a.returns = 0;
     a.slid = a.slip;
+    if (kept(a.slave)) a.keep_gap = true;  // §7.2, the closure's fallback
   }
   std::set<int> released, pinned;
   out.stats = StepContactStats{};
@@ -38,7 +39,6 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   bool swept = false;
   bool warm = false;      // §6.1-§6.2: a re-solve starts from the last solution
   bool search = search_;  // §6.9: search the set, then solve it to the full tolerance
-  constraints_.set_keep_behind(fallback_);
   for (;;) {
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
@@ -100,12 +100,10 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       }
     }
     for (auto a : fresh) {
-      if (released.count(a.slave)) {  // released in this step and penetrating again: keep it
+      if (kept(a.slave)) a.keep_gap = true;  // §7.2, the closure's fallback
+      if (released.count(a.slave)) {         // released in this step and penetrating again: keep it
         pinned.insert(a.slave);
         ++out.stats.reactivated;
-        // docs/THEORY.md §7.2: in the closure's fallback it keeps its gap (it may end the step
-        // in tension, where no compressive impulse gives its closure work back)
-        if (fallback_) a.keep_gap = true;
       }
       next.push_back(a);
     }
@@ -121,6 +119,20 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   }
   accept(x0, x1, *g, trial, fN, out, p);  // the contact nodes of the last detection
   return true;
+}
+
+int ActiveSetLoop::keep_gaps(const std::vector<int>& slaves) {
+  int added = 0;
+  for (int s : slaves)
+    if (!kept(s)) {
+      kept_.insert(std::lower_bound(kept_.begin(), kept_.end(), s), s);
+      ++added;
+    }
+  return contact_.global_count(added);
+}
+
+bool ActiveSetLoop::kept(int slave) const {
+  return std::binary_search(kept_.begin(), kept_.end(), slave);
 }
 
 // §6.5: accept; nodes still in tension (only pinned ones can be) leave for the next step.

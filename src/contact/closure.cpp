@@ -20,11 +20,12 @@ ClosureWork Contact::closure_work(const Vector& g, Positions x0, Positions x1,
     if (closes(a)) closed.push_back(a);
   const int n = static_cast<int>(closed.size());
   Values3 Fv("emc::closure_F", n), wn("emc::closure_wn", n), N1("emc::closure_N1", n);
+  Kokkos::View<int*, ExecSpace> unrestorable("emc::closure_unrestorable", n);
   auto Fh = Kokkos::create_mirror_view(Fv);
   for (int k = 0; k < n; ++k)
     for (int c = 0; c < 3; ++c) Fh(k, c) = F.at(closed[k].slave)[c];
   Kokkos::deep_copy(Fv, Fh);
-  const ClosureTerms terms = closure_terms(refs(closed), x0, x1, Fv, wn, N1);
+  const ClosureTerms terms = closure_terms(refs(closed), x0, x1, Fv, wn, N1, unrestorable);
   auto wh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), wn);
   auto Nh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), N1);
   std::vector<double> send;  // (dof, value) pairs of p
@@ -47,6 +48,9 @@ ClosureWork Contact::closure_work(const Vector& g, Positions x0, Positions x1,
     if (l != Tpetra::Details::OrdinalTraits<LO>::invalid()) pv(l, 0) += all[k + 1];
   }
   ClosureWork total;
+  auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), unrestorable);
+  for (int k = 0; k < n; ++k)
+    if (uh(k)) total.unrestorable.push_back(closed[k].slave);
   double sums[2] = {terms.work, terms.roundoff}, all_sums[2];
   Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 2, sums, all_sums);
   total.work = all_sums[0];

@@ -14,7 +14,7 @@ ActiveConstraints::ActiveConstraints(const Contact& contact, linalg::Elimination
 }
 
 LawState ActiveConstraints::state(Positions x1) const {
-  LawState s{contact_, index_, x0_, x1, {}, keep_behind_};
+  LawState s{contact_, index_, x0_, x1, {}};
   if (iterate_dependent_ && x1.extent(0) > 0) {  // n+1/2 for the chains' tangents (§5)
     Positions xh = contact_.nodes().new_positions("emc::xh");
     midpoint(x0_, x1, xh);

@@ -202,20 +202,14 @@ void switch_facets(const LawState& s, std::vector<Active>& entries, Refs refs, P
       current.push_back(lf.find(entries[k].facet));
     }
     Kokkos::View<int*, ExecSpace> next("emc::next_facet", ks.size());
-    Kokkos::View<int*, ExecSpace> behind("emc::behind_next", ks.size());
     frictionless_switch(lf.grid(xh, pr.dmax), nodes.slaves(p), lf.nodes, refs,
                         to_view("emc::leaving", ks), to_view("emc::slave_k", slave_k),
-                        to_view("emc::current", current), s.x0, x1, xh, entry_rule(pr),
-                        s.keep_behind, xs1, xi, outside, next, behind);
+                        to_view("emc::current", current), s.x0, x1, xh, entry_rule(pr), xs1, xi,
+                        outside, next);
     auto nh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), next);
-    auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), behind);
     auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);
-    for (std::size_t j = 0; j < ks.size(); ++j) {
-      if (nh(j) < 0) continue;
-      entries[ks[j]].facet = ids(nh(j));
-      // docs/THEORY.md §7.2, the closure's fallback: behind its new facet, it keeps its gap
-      if (s.keep_behind && pr.close_gap && bh(j)) entries[ks[j]].keep_gap = true;
-    }
+    for (std::size_t j = 0; j < ks.size(); ++j)
+      if (nh(j) >= 0) entries[ks[j]].facet = ids(nh(j));
   }
 }
 

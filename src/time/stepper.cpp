@@ -135,7 +135,11 @@ StepReport Stepper::advance() {
   const Vector& u0 = *s_.u;
   Vector u1(u0.getMap());
   newton_.set_contraction(s_.newton_contraction);
-  bool fallback = false;  // docs/THEORY.md §7.4: the closure's fallback, once it was needed
+  // docs/THEORY.md §7.2: the closure's fallback keeps the gaps of the slaves whose closure no
+  // impulse could give back, for this step only; at most kFallbacks re-solves before a cut
+  constexpr int kFallbacks = 3;
+  int fallbacks = 0;
+  if (loop_) loop_->clear_kept();
   for (;;) {
     // the last step is shortened to end at Time/end, unless only by round-off of the sum of
     // the steps: then it is dt itself, as in a run with a later end (an extended run goes on
@@ -145,7 +149,6 @@ StepReport Stepper::advance() {
     check_step_size(h);
     Vector V1(*s_.V, Teuchos::Copy);
     bool restored = true;
-    if (loop_) loop_->set_closure_fallback(fallback);
     const bool solved = solve_step(h, u1, rep);
     if (solved) {
       // eq. 19: V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n
@@ -173,8 +176,9 @@ StepReport Stepper::advance() {
       }
       return rep;
     }
-    if (solved && !restored && !fallback) {  // §7.4: the same step, closing less
-      fallback = true;
+    if (solved && !restored && loop_ && fallbacks < kFallbacks &&
+        loop_->keep_gaps(closure_work_.unrestorable) > 0) {  // §7.2: the same step, closing less
+      ++fallbacks;
       ++rep.closure_fallbacks;
       continue;
     }

@@ -108,6 +108,9 @@ inline double gap_roundoff(const Pair& p, const double x[3]) {
 struct ClosureWork {
   double work = 0;      ///< W_c
   double roundoff = 0;  ///< |W_c| below this is round-off: nothing to give back
+  /// my closed slaves whose own closure work no impulse gives back (docs/THEORY.md §7.2, the
+  /// closure's fallback: energy they gave, or took without a compressive force)
+  std::vector<int> unrestorable;
 };
 
 }  // namespace emc::contact

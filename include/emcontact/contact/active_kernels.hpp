@@ -79,17 +79,15 @@ void frictionless_projections(Refs refs, Positions x0, Positions x1, Values3 xs1
 /// my slaves' index slave_k(j) in `ls`): the facet facing the slave whose CPP at n+1/2 is inside,
 /// the nearest (next_facet on grid_h, the pair's facets at xh = n+1/2; local index current(j) is
 /// the entry's own); if another is found, xi, xs1 and outside become those of steps 2-3 on it
-/// and next(j) its local index, else next(j) = -1. behind(j) = 1 where the slave at t_n lies
-/// behind the new facet beyond round-off; with keep_behind (the closure's fallback,
-/// docs/THEORY.md §7.2) such an entry is not closed on it.
+/// and next(j) its local index, else next(j) = -1.
 void frictionless_switch(const FacetGrid& grid_h, const LocalSlaves& ls,
                          Kokkos::View<int* [3], ExecSpace> facets, Refs refs,
                          Kokkos::View<int*, ExecSpace> leaving,
                          Kokkos::View<int*, ExecSpace> slave_k,
                          Kokkos::View<int*, ExecSpace> current, Positions x0, Positions x1,
-                         Positions xh, const EntryRule& rule, bool keep_behind, Values3 xs1,
+                         Positions xh, const EntryRule& rule, Values3 xs1,
                          Kokkos::View<double* [2], ExecSpace> xi, Values outside,
-                         Kokkos::View<int*, ExecSpace> next, Kokkos::View<int*, ExecSpace> behind);
+                         Kokkos::View<int*, ExecSpace> next);
 
 /// §5 blocks P, Pt, X of every frictionless entry at (x0, x1), g the contactless residual.
 void frictionless_blocks(Refs refs, Positions x0, Positions x1, OwnedValues g,
@@ -110,12 +108,14 @@ void start_points(Refs refs, Positions x0, Kokkos::View<double* [2], ExecSpace> 
 
 /// docs/THEORY.md §7.4 per closed entry, with F its transmitted force: the work
 /// F . (dx_s - N dx_m) and its round-off (sums), and the impulse weight w n at n+1 and the
-/// CPP N' at n+1 (w = 0: no impulse).
+/// CPP N' at n+1 (w = 0: no impulse); unrestorable(k) = 1 where the entry's own work is beyond
+/// its round-off and no impulse gives it back: energy it gave (work > 0), or took with w = 0
+/// (§7.2, the closure's fallback).
 struct ClosureTerms {
   double work = 0, roundoff = 0;
 };
-ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn,
-                           Values3 N1);
+ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn, Values3 N1,
+                           Kokkos::View<int*, ExecSpace> unrestorable);
 
 /// docs/THEORY.md §3.2 (eq. 44): beta(k) = tr(A_ss) / 3 for the slave whose owned dofs are
 /// dof(3k .. 3k + 2), read from their rows of A (only those rows: the whole diagonal would cost a

@@ -44,10 +44,11 @@ class ActiveSetLoop {
   /// is solved to the full one and checked again (the Solve honours `search`; needs warm).
   void set_search(bool on) { search_ = on; }
 
-  /// docs/THEORY.md §7.2, §7.4: the closure's fallback for a step whose closure work no
-  /// compressive impulse can give back: nodes re-activated in the step and nodes that move onto
-  /// a facet they lay behind at t_n keep their gap (no closure work) instead of being closed.
-  void set_closure_fallback(bool on) { fallback_ = on; }
+  /// docs/THEORY.md §7.2, the closure's fallback: my slaves `slaves` keep their gap (no
+  /// closure work) in the solves that follow, until clear_kept. Collective: returns how many
+  /// slaves this added on all ranks.
+  int keep_gaps(const std::vector<int>& slaves);
+  void clear_kept() { kept_.clear(); }
 
   /// §6: the step from u0 with the set `active` at t_n; u1 holds a prediction of u_{n+1} on
   /// entry (the reach of the contact nodes) and the solution on return. p (or null): the
@@ -59,8 +60,9 @@ class ActiveSetLoop {
   const Contact& contact_;
   ActiveConstraints constraints_;
   bool search_ = false;
-  bool fallback_ = false;
+  std::vector<int> kept_;  ///< slaves whose gap the closure's fallback keeps (sorted)
 
+  bool kept(int slave) const;
   void accept(Positions x0, Positions x1, const Vector& g, std::vector<Active>& trial,
               const std::vector<double>& fN, SettledSet& out, Vector* p);
 };

@@ -25,8 +25,6 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   const ActiveIndex& index() const { return index_; }
   /// The contact nodes at t_n (the positions at u0 of the current contact nodes), for start.
   void set_start_positions(Positions x0) { x0_ = x0; }
-  /// docs/THEORY.md §7.2: the closure's fallback for the laws' updates (LawState::keep_behind)
-  void set_keep_behind(bool on) { keep_behind_ = on; }
 
   void start(const Vector& u0, Vector& u1) override;
   void before_reduce(const Vector& u0, const Vector& u1, Vector& g, const Matrix& A) override;
@@ -47,7 +45,6 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   bool iterate_dependent_ = false;              ///< some present law's rows follow the iterate
   Positions x0_;                                ///< contact nodes at t_n
   ActiveIndex index_;                           ///< every rank's active entries (chains)
-  bool keep_behind_ = false;                    ///< LawState::keep_behind
   double roundoff_ = 0;                         ///< LawRows::roundoff at the last iterate
 
   LawState state(Positions x1) const;

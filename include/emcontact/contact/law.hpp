@@ -22,9 +22,6 @@ struct LawState {
   const ActiveIndex& index;
   Positions x0, x1;
   Positions::HostMirror xh;  ///< at n+1/2 (frictionless chains)
-  /// docs/THEORY.md §7.2, the closure's fallback: a closing node that moves onto a facet it lay
-  /// behind at t_n keeps its gap there instead of being pushed out
-  bool keep_behind = false;
 };
 
 /// The elimination's rows a law contributes.
