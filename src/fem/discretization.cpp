@@ -69,7 +69,7 @@ void Discretization::build_element_data() {
   auto light = Kokkos::create_mirror_view(ev.massless_nodes);
   for (int k = 0; k < ne; ++k) {
     const int e = part_.my_tets[k];
-    double x[4][3], g[4][3];
+    double x[4][3], g[4][3] = {};  // zero where tet_gradients leaves it (a flat tet, refused)
     light(k) = massless_mask(model_, e);
     for (int a = 0; a < 4; ++a) {
       const int n = model_.tets[4 * e + a];
