@@ -126,7 +126,8 @@ def main():
             r.get('ED_drift', r['E_drift']),
             comps, ', '.join('%.3f-%.3f' % tuple(p) for p in r['contact_periods']), r['gap_min'], r['gap_max'],
             r['resolves'] / max(1, r['steps'])))
-    md += ['', 'Wall times: one rank, on the VM of the row's date (its speed has varied by up to 2x between days: compare rows of one date). Active gap: g_N at '
+    md += ['', "Wall times: one rank, on the VM of the row's date (its speed has varied by up to 2x "
+           'between days: compare rows of one date). Active gap: g_N at '
            'the end of the step of the nodes active in it (negative: penetration); re-solves: extra solves of a step '
            'for the active set (docs/THEORY.md §6). D: the energy dissipated by friction (0 without friction, '
            'docs/THEORY.md §11.2); E + D is conserved.', '']
