@@ -264,21 +264,21 @@ ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Val
             (kernels::fabs(F(k, 0)) + kernels::fabs(F(k, 1)) + kernels::fabs(F(k, 2))) *
             gap_roundoff(a.edge, y1);
         roundoff += r_e;
-        double xi1[2], gap;
-        for (int c = 0; c < 3; ++c) wn(k, c) = N1(k, c) = 0;
-        // §7.2, the closure's fallback: energy this entry gave, or took without an impulse
-        unrestorable(k) = kernels::fabs(w_e) > r_e;
-        if (!kernels::facet_cpp(y1, xm1, xi1, gap)) return;
-        const kernels::Facet f1 = kernels::facet(xm1);
-        const double w =
-            kernels::fmax(0.0, F(k, 0) * f1.n[0] + F(k, 1) * f1.n[1] + F(k, 2) * f1.n[2]);
-        unrestorable(k) = w_e > r_e || (w == 0 && -w_e > r_e);
-        double M[3];
-        kernels::facet_shape(xi1, M);
+        // the impulse weight w = max(F . n, 0) and the CPP N' on the facet at n+1 (none where the
+        // facet is degenerate: w = 0)
+        double xi1[2], gap, w = 0, n1[3] = {0, 0, 0}, M[3] = {0, 0, 0};
+        if (kernels::facet_cpp(y1, xm1, xi1, gap)) {
+          const kernels::Facet f1 = kernels::facet(xm1);
+          w = kernels::fmax(0.0, F(k, 0) * f1.n[0] + F(k, 1) * f1.n[1] + F(k, 2) * f1.n[2]);
+          for (int c = 0; c < 3; ++c) n1[c] = f1.n[c];
+          kernels::facet_shape(xi1, M);
+        }
         for (int c = 0; c < 3; ++c) {
-          wn(k, c) = w * f1.n[c];
+          wn(k, c) = w * n1[c];
           N1(k, c) = M[c];
         }
+        // §7.2, the closure's fallback: energy this entry gave, or took with no impulse
+        unrestorable(k) = w_e > r_e || (w == 0 && -w_e > r_e);
       },
       sum.work, sum.roundoff);
   return sum;

@@ -43,7 +43,7 @@ struct StepReport {
   int newton_iterations = 0;
   int linear_iterations = 0;
   int cuts = 0;
-  int closure_fallbacks = 0;  ///< solves repeated closing less (docs/THEORY.md §7.4)
+  int closure_fallbacks = 0;  ///< solves repeated closing less (docs/THEORY.md §7.2)
   double closure_energy = 0;  ///< energy given back by the velocity update (docs/THEORY.md §7.4)
   double dissipated = 0;      ///< energy friction dissipated in the step (docs/THEORY.md §11.2)
   std::string last_failure;
