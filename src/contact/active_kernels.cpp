@@ -284,31 +284,50 @@ ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Val
   return sum;
 }
 
-void dummy_betas(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof, const Values beta) {
+DiagonalOffsets diagonal_offsets(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof) {
   const auto lA = A.getLocalMatrixDevice();
   const auto rows = A.getRowMap()->getLocalMap();
   const auto cols = A.getColMap()->getLocalMap();
   const bool sorted = A.getCrsGraph()->isSorted();  // a row's columns in order: bisection
+  DiagonalOffsets at(Kokkos::ViewAllocateWithoutInitializing("emc::diagonal_offsets"),
+                     dof.extent(0));
+  Kokkos::parallel_for(
+      "emcontact::contact::diagonal_offsets", Kokkos::RangePolicy<ExecSpace>(0, dof.extent(0)),
+      KOKKOS_LAMBDA(const int i) {
+        const GO g = dof(i);
+        const LO row = rows.getLocalElement(g), col = cols.getLocalElement(g);
+        auto j = lA.graph.row_map(row), end = lA.graph.row_map(row + 1);
+        for (auto hi = end; sorted && j < hi;) {  // the first entry at or after col
+          const auto mid = j + (hi - j) / 2;
+          if (lA.graph.entries(mid) < col)
+            j = mid + 1;
+          else
+            hi = mid;
+        }
+        at(i) = -1;
+        for (; j < end && (!sorted || lA.graph.entries(j) <= col); ++j)
+          if (lA.graph.entries(j) == col) {
+            at(i) = static_cast<long long>(j);
+            break;
+          }
+      });
+  return at;
+}
+
+void dummy_betas_at(const Matrix& A, const DiagonalOffsets at, const Values beta) {
+  const auto values = A.getLocalMatrixDevice().values;
   Kokkos::parallel_for(
       "emcontact::contact::dummy_betas", Kokkos::RangePolicy<ExecSpace>(0, beta.extent(0)),
       KOKKOS_LAMBDA(const int k) {
         double tr = 0;
-        for (int c = 0; c < 3; ++c) {
-          const GO g = dof(3 * k + c);
-          const LO row = rows.getLocalElement(g), col = cols.getLocalElement(g);
-          auto j = lA.graph.row_map(row), end = lA.graph.row_map(row + 1);
-          for (auto hi = end; sorted && j < hi;) {  // the first entry at or after col
-            const auto mid = j + (hi - j) / 2;
-            if (lA.graph.entries(mid) < col)
-              j = mid + 1;
-            else
-              hi = mid;
-          }
-          for (; j < end && (!sorted || lA.graph.entries(j) <= col); ++j)
-            if (lA.graph.entries(j) == col) tr += lA.values(j);
-        }
+        for (int c = 0; c < 3; ++c)
+          if (at(3 * k + c) >= 0) tr += values(at(3 * k + c));
         beta(k) = tr / 3;
       });
+}
+
+void dummy_betas(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof, const Values beta) {
+  dummy_betas_at(A, diagonal_offsets(A, dof), beta);
 }
 
 }  // namespace emc::contact

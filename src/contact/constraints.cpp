@@ -58,6 +58,7 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
     Kokkos::deep_copy(dummy_dofs_, Kokkos::View<const GO*, Kokkos::HostSpace>(out.dummies.data(),
                                                                               out.dummies.size()));
     beta_ = Values(Kokkos::ViewAllocateWithoutInitializing("emc::beta"), out.dummies.size() / 3);
+    dummy_graph_ = Teuchos::null;  // their diagonal entries are found at the next iterate
   }
   applied_ = std::move(key);
   return !iterate_dependent_ || new_members;
@@ -76,8 +77,12 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, Vector& g
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: Newton iterates");
   Teuchos::TimeMonitor tm(*timer);  // beta, and the rows that follow the iterate
   roundoff_ = 0;
-  if (!iterate_dependent_) {             // P is fixed during the step, beta follows A (eq. 44)
-    dummy_betas(A, dummy_dofs_, beta_);  // docs/THEORY.md §3.2
+  if (!iterate_dependent_) {  // P is fixed during the step, beta follows A (eq. 44)
+    if (dummy_graph_.get() != A.getCrsGraph().get()) {  // a new set (or a new matrix)
+      dummy_diagonal_ = diagonal_offsets(A, dummy_dofs_);
+      dummy_graph_ = A.getCrsGraph();
+    }
+    dummy_betas_at(A, dummy_diagonal_, beta_);  // docs/THEORY.md §3.2
     elim_.set_dummy_betas(beta_);
     return;
   }

@@ -117,9 +117,16 @@ struct ClosureTerms {
 ClosureTerms closure_terms(Refs refs, Positions x0, Positions x1, Values3 F, Values3 wn, Values3 N1,
                            Kokkos::View<int*, ExecSpace> unrestorable);
 
+/// Where A's diagonal entry of each owned dof(i) lies in A's values (-1: the row has none). It
+/// holds as long as A's graph does: the Newton matrix keeps its graph over a run.
+using DiagonalOffsets = Kokkos::View<long long*, ExecSpace>;
+DiagonalOffsets diagonal_offsets(const Matrix& A, Kokkos::View<const GO*, ExecSpace> dof);
+
 /// docs/THEORY.md §3.2 (eq. 44): beta(k) = tr(A_ss) / 3 for the slave whose owned dofs are
 /// dof(3k .. 3k + 2), read from their rows of A (only those rows: the whole diagonal would cost a
 /// pass over A at every Newton iterate); a row without a diagonal entry adds 0.
 void dummy_betas(const Matrix& A, Kokkos::View<const GO*, ExecSpace> dof, Values beta);
+/// The same with the offsets of the dofs' diagonal entries (diagonal_offsets, for A's graph).
+void dummy_betas_at(const Matrix& A, DiagonalOffsets at, Values beta);
 
 }  // namespace emc::contact

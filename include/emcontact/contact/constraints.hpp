@@ -41,6 +41,8 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<std::array<int, 2>> members_;     ///< (slave, slip) of the last set used
   Kokkos::View<GO*, ExecSpace> dummy_dofs_;     ///< the set's dummies, a slave's three in a row
   Values beta_;                                 ///< beta per slave of dummy_dofs_ (eq. 44)
+  DiagonalOffsets dummy_diagonal_;              ///< their diagonal entries in A's values
+  Teuchos::RCP<const Graph> dummy_graph_;       ///< the graph of A dummy_diagonal_ is for
   std::vector<const Law*> present_;             ///< laws with an entry on some rank
   bool iterate_dependent_ = false;              ///< some present law's rows follow the iterate
   Positions x0_;                                ///< contact nodes at t_n
