@@ -7,6 +7,7 @@
 #include <string>
 
 #include "emcontact/app/error_exit.hpp"
+#include "emcontact/app/memory.hpp"
 #include "emcontact/app/run.hpp"
 #include "emcontact/app/signals.hpp"
 #include "emcontact/error.hpp"
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
       std::cout << (early == "help" ? emc::app::usage() : emc::app::version()) << std::endl;
     return 0;
   }
+  emc::app::keep_freed_memory();  // before MPI and Kokkos allocate
   Tpetra::ScopeGuard scope(&argc, &argv);
   emc::output::silence_hdf5_errors();  // errors are reported in one line each
   auto comm = Tpetra::getDefaultComm();
