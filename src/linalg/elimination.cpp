@@ -1,6 +1,7 @@
 #include "emcontact/linalg/elimination.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <Tpetra_RowMatrixTransposer.hpp>
 #include <algorithm>
 #include <map>
 
@@ -83,6 +84,7 @@ void Elimination::set_constraints(const std::vector<GO>& fixed, const std::vecto
   } else if (!masked_) {
     write_P_rows(*P_, rows);
   }
+  PT_ = Teuchos::null;  // P's pattern or values changed
   pt_rows_.clear();
   X_.clear();
   linearised_ = false;
@@ -173,10 +175,15 @@ void Elimination::reduce_residual(const Vector& g, Vector& R) const {
     R.assign(g);
     return;
   }
-  if (masked_)
+  if (masked_) {
     apply_mask(*keep_, g, R);
-  else
-    P_->apply(g, R, Teuchos::TRANS);
+  } else if (ExecSpace().concurrency() == 1) {
+    P_->apply(g, R, Teuchos::TRANS);  // one thread: each column sums in row order
+  } else {  // threads: bit for bit the same in every run (docs/THEORY.md §9)
+    if (PT_.is_null())
+      PT_ = Tpetra::RowMatrixTransposer<Scalar, LO, GO, Node>(P_).createTranspose();
+    PT_->apply(g, R);
+  }
 }
 
 void Elimination::expand(const Vector& dq, Vector& du) const {

@@ -1,5 +1,6 @@
 #include <Ifpack2_Factory.hpp>
 #include <Ifpack2_Parameters.hpp>
+#include <cstdlib>
 
 #include "emcontact/linalg/linear_solver.hpp"
 
@@ -19,6 +20,10 @@ bool of_another_preconditioner(const std::string& name, Preconditioner type) {
 }
 
 }  // namespace
+
+void same_random_start() {
+  std::srand(1);
+}
 
 // `ilu`: RILUK(0); `schwarz`: restricted additive Schwarz with overlap 1 and RILUK(0) inside
 // (measured best of the Ifpack2 options on 2 ranks, see README "Toolchain"). The user's
@@ -56,6 +61,7 @@ Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<cons
       }
     }
   }
+  same_random_start();
   prec->initialize();
   prec->compute();
   return prec;

@@ -51,6 +51,7 @@ Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::
   if (!nullspace.is_null()) p.sublist("user data").set("Nullspace", nullspace);
   if (!coordinates.is_null()) p.sublist("user data").set("Coordinates", coordinates);
   Teuchos::RCP<Operator> op = A;
+  same_random_start();
   return MueLu::CreateTpetraPreconditioner(op, p);
 #endif
 }
@@ -70,6 +71,7 @@ void refresh_muelu(const Teuchos::RCP<Matrix>& A, Operator& prec) {
 #else
   auto* op = dynamic_cast<MueLu::TpetraOperator<Scalar, LO, GO, Node>*>(&prec);
   if (!op) throw std::logic_error("refresh_muelu: not a MueLu preconditioner");
+  same_random_start();
   MueLu::ReuseTpetraPreconditioner(A, *op);
 #endif
 }

@@ -92,6 +92,10 @@ class Elimination {
  private:
   Teuchos::RCP<const Map> owned_;
   Teuchos::RCP<Matrix> P_;
+  /// P^T as a matrix of its own (threaded backends only; null until reduce_residual needs it
+  /// after P changed): Tpetra's transposed apply sums a column with atomics there, in an
+  /// order that varies from run to run; a product with P^T's rows sums each in a fixed order.
+  mutable Teuchos::RCP<Matrix> PT_;
   Teuchos::RCP<const Vector> keep_;          ///< 1 where P's row is e_i, 0 on fixed and slave rows
   std::vector<std::pair<GO, double>> diag_;  ///< D's entries (owned dofs)
   Teuchos::RCP<Vector> d_;                   ///< D as a vector (masked path)

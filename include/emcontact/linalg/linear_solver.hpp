@@ -33,6 +33,12 @@ struct SolveStats {
 /// The input's name of a preconditioner (Solver/Linear/preconditioner).
 const char* preconditioner_name(Preconditioner p);
 
+/// Reseeds std::rand, from which Tpetra's MultiVector::randomize seeds the random start of
+/// Chebyshev's power method (Ifpack2's, and MueLu's Chebyshev smoothers): called before each
+/// preconditioner setup, so that every setup of the same matrix is the same whatever came before
+/// it, and a restarted run repeats the uninterrupted one bit for bit.
+void same_random_start();
+
 /// A preconditioner factory result (Ifpack2 or MueLu), as a Tpetra operator. `unused`, if
 /// given, receives the names of `user` that Ifpack2 does not know; `ignored` those it knows
 /// for another preconditioner than `type` (e.g. "fact: ..." with chebyshev).
