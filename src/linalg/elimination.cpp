@@ -177,7 +177,7 @@ void Elimination::reduce_residual(const Vector& g, Vector& R) const {
   }
   if (masked_) {
     apply_mask(*keep_, g, R);
-  } else if (ExecSpace().concurrency() == 1) {
+  } else if (!form_transpose_) {
     P_->apply(g, R, Teuchos::TRANS);  // one thread: each column sums in row order
   } else {  // threads: bit for bit the same in every run (docs/THEORY.md §9)
     if (PT_.is_null())

@@ -86,16 +86,22 @@ class Elimination {
   Teuchos::RCP<Matrix> reduce_matrix(const Teuchos::RCP<Matrix>& A) const;
   /// R = P^T g.
   void reduce_residual(const Vector& g, Vector& R) const;
+  /// How reduce_residual forms P^T g (docs/THEORY.md §9): true, through P^T formed as a matrix
+  /// once per change of P; false, through Tpetra's transposed apply. By default true on
+  /// threaded backends only (where the transposed apply sums with atomics); tests set both.
+  void form_transpose(bool on) { form_transpose_ = on; }
   /// du = P dq.
   void expand(const Vector& dq, Vector& du) const;
 
  private:
   Teuchos::RCP<const Map> owned_;
   Teuchos::RCP<Matrix> P_;
-  /// P^T as a matrix of its own (threaded backends only; null until reduce_residual needs it
-  /// after P changed): Tpetra's transposed apply sums a column with atomics there, in an
-  /// order that varies from run to run; a product with P^T's rows sums each in a fixed order.
+  /// P^T as a matrix of its own (with form_transpose_; null until reduce_residual needs it
+  /// after P changed): on threaded backends Tpetra's transposed apply sums a column with
+  /// atomics, in an order that varies from run to run; a product with P^T's rows sums each in a
+  /// fixed order.
   mutable Teuchos::RCP<Matrix> PT_;
+  bool form_transpose_ = ExecSpace().concurrency() > 1;
   Teuchos::RCP<const Vector> keep_;          ///< 1 where P's row is e_i, 0 on fixed and slave rows
   std::vector<std::pair<GO, double>> diag_;  ///< D's entries (owned dofs)
   Teuchos::RCP<Vector> d_;                   ///< D as a vector (masked path)
