@@ -68,19 +68,26 @@ extern "C" void kokkosp_finalize_library() {
     return;
   }
   std::fprintf(out, "# seconds calls kernel\n");
-  for (const auto& [name, t] : rows) std::fprintf(out, "%.6f %ld %s\n", t.seconds, t.calls, name.c_str());
+  for (const auto& [name, t] : rows)
+    std::fprintf(out, "%.6f %ld %s\n", t.seconds, t.calls, name.c_str());
   if (out != stderr) std::fclose(out);
 }
 
 extern "C" void kokkosp_begin_parallel_for(const char* name, uint32_t, uint64_t* id) {
   begin(name, id);
 }
-extern "C" void kokkosp_end_parallel_for(uint64_t id) { end(id); }
+extern "C" void kokkosp_end_parallel_for(uint64_t id) {
+  end(id);
+}
 extern "C" void kokkosp_begin_parallel_reduce(const char* name, uint32_t, uint64_t* id) {
   begin(name, id);
 }
-extern "C" void kokkosp_end_parallel_reduce(uint64_t id) { end(id); }
+extern "C" void kokkosp_end_parallel_reduce(uint64_t id) {
+  end(id);
+}
 extern "C" void kokkosp_begin_parallel_scan(const char* name, uint32_t, uint64_t* id) {
   begin(name, id);
 }
-extern "C" void kokkosp_end_parallel_scan(uint64_t id) { end(id); }
+extern "C" void kokkosp_end_parallel_scan(uint64_t id) {
+  end(id);
+}
