@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "emcontact/linalg/direct_umfpack.hpp"
 #include "emcontact/linalg/rigid_modes.hpp"
@@ -15,6 +16,11 @@ namespace emc::linalg {
 
 using Teuchos::RCP;
 using Teuchos::rcp;
+
+// docs/THEORY.md §9: every preconditioner setup starts Chebyshev's power method alike.
+void same_random_start() {
+  std::srand(1);
+}
 
 const char* preconditioner_name(Preconditioner p) {
   switch (p) {

@@ -1,6 +1,5 @@
 #include <Ifpack2_Factory.hpp>
 #include <Ifpack2_Parameters.hpp>
-#include <cstdlib>
 
 #include "emcontact/linalg/linear_solver.hpp"
 
@@ -20,10 +19,6 @@ bool of_another_preconditioner(const std::string& name, Preconditioner type) {
 }
 
 }  // namespace
-
-void same_random_start() {
-  std::srand(1);
-}
 
 // `ilu`: RILUK(0); `schwarz`: restricted additive Schwarz with overlap 1 and RILUK(0) inside
 // (measured best of the Ifpack2 options on 2 ranks, see README "Toolchain"). The user's
