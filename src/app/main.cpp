@@ -24,6 +24,8 @@ bool first_process() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // a signal from here on ends the run with its one-line message (held until MPI has started)
+  emc::app::install_stop_handlers();
   // --help and --version answer before MPI and Kokkos start
   const std::string early = emc::app::early_option(argc, argv);
   if (!early.empty()) {
@@ -37,7 +39,7 @@ int main(int argc, char** argv) {
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
   const emc::app::ErrorExit error_exit;
-  emc::app::install_sigterm_handler(comm->getRank());
+  emc::app::stop_handlers_ready(comm->getRank());
   try {
     const auto opt = emc::app::parse_args(argc, argv);
     if (opt.help) {

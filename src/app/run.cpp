@@ -257,6 +257,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->stepper =
       std::make_unique<time::Stepper>(P.sublist("Time"), *sim->newton, *sim->elim,
                                       owned_fixed_dofs(disc), sim->contact.get(), sim->state);
+  sim->stepper->check_start(opt.input);  // the first step's scales against the tolerances
   if (opt.restart.empty()) settle(*sim, P.sublist("Time"), opt.input, *comm);
   return sim;
 }
@@ -292,7 +293,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.checkpoint_every;
-  sigterm_stops_time_loop();
+  signals_stop_time_loop();
   // the step of DIR/checkpoint.h5 if this run wrote it or restarted from it, else -1
   long kept = same_file(opt.restart, sum.output_dir + "/checkpoint.h5") ? state.step : -1;
   auto stop_on_sigterm = [&]() {
@@ -339,7 +340,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
     progress.finish();
     if (root) w.monitors->flush(true);
     const std::string file = sum.output_dir + "/checkpoint.h5";
-    if (std::string(e.what()).find("stopped by SIGTERM") != std::string::npos) throw;
+    if (std::string(e.what()).find("stopped by SIG") != std::string::npos) throw;
     save_checkpoint(*sim, *w.dofs, file);  // the last accepted step, to look at or restart
     throw RunError(std::string(e.what()) + "; the last accepted step is in " + file);
   } catch (const Error&) {

@@ -17,8 +17,8 @@ void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::s
 /// from the restart on (a note says so).
 void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string& path);
 
-/// SIGTERM: a restart from a checkpoint of the regular grid (`Output/checkpoint every`)
-/// continues exactly as the uninterrupted run (both rebuild the preconditioner there); one
+/// SIGTERM, SIGINT, SIGHUP: a restart from a checkpoint of the regular grid (`Output/checkpoint
+/// every`) continues exactly as the uninterrupted run (both rebuild the preconditioner there); one
 /// written at another step would not (the uninterrupted run reuses an older preconditioner).
 /// So the checkpoint of step `kept` (>= 0: `path` holds it) stays and the steps after it are
 /// recomputed; with none (`kept` < 0) the current state is written. Returns the message.

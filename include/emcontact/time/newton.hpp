@@ -27,6 +27,15 @@ struct NewtonOptions {
 };
 NewtonOptions newton_options(const Teuchos::ParameterList& newton);
 
+/// docs/THEORY.md §1.6: the sizes at a step's start (u_{n+1} = u_n) that the tolerances are
+/// checked against before the first step.
+struct StartScales {
+  double scale = 0;  ///< ||scale||: the size of the residual's terms
+  /// per owned dof, the inertia of a rigid translation (2/dt^2) sum_j M_ij over the Newton
+  /// matrix's diagonal A_ii = (2/dt^2) M_ii + K_ii (0 where A_ii is not > 0)
+  Teuchos::RCP<Vector> inertia_share;
+};
+
 struct NewtonResult {
   bool converged = false;
   int iterations = 0;             ///< linear solves done
@@ -50,6 +59,9 @@ class Newton {
   /// rtol > 0 replaces the relative tolerance (a search solve, docs/THEORY.md §6.9).
   NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
                      double reference = 0, double rtol = 0);
+
+  /// The sizes of the step of dt from (u0, V0) before any iterate (StartScales).
+  StartScales start_scales(const Vector& u0, const Vector& V0, double dt);
 
   /// Constraints that change inside Newton (contact); null: only the fixed elimination.
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }
