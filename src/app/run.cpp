@@ -19,6 +19,7 @@
 #include "emcontact/app/restart.hpp"
 #include "emcontact/app/root_gather.hpp"
 #include "emcontact/app/scale_check.hpp"
+#include "emcontact/app/shared_input.hpp"
 #include "emcontact/app/signals.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "emcontact/contact/contact.hpp"
@@ -225,7 +226,7 @@ void settle(Simulation& sim, const Teuchos::ParameterList& time, const std::stri
 
 std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   auto sim = std::make_unique<Simulation>();
-  sim->in = read_input(opt.input, opt.overrides);
+  sim->in = read_shared_input(opt.input, opt.overrides, *comm);  // rank 0's file on every rank
   const auto& P = *sim->in.params;
   auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
   sim->model = fem::build_model(P, std::move(meshes), opt.input);
@@ -296,6 +297,8 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   signals_stop_time_loop();
   // the step of DIR/checkpoint.h5 if this run wrote it or restarted from it, else -1
   long kept = same_file(opt.restart, sum.output_dir + "/checkpoint.h5") ? state.step : -1;
+  // rank 0's files decide: whether a stop writes a checkpoint is collective
+  Teuchos::broadcast(*comm, 0, 1, &kept);
   auto stop_on_sigterm = [&]() {
     if (root) w.monitors->flush(true);
     throw RunError(stop_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5", kept));

@@ -196,3 +196,32 @@ lx = [float(r["Lx"]) for r in rows]
 assert all(abs(v - lx[0]) < 1e-2 * abs(lx[0]) for v in lx), lx  # no flip
 PY
 }
+
+# --- ranks started with different inputs run rank 0's ---
+
+hostile_mpmd_other_arguments_run_rank0s() {
+  emc_good_input in.xml
+  local opts=(in.xml --set Time/end=0.05 --set "Bodies/block/Initial/velocity={1,0,0}")
+  expect_exit_within 120 0 "${MPIRUN[@]}" -np 2 "$EMC" "${opts[@]}" --output same
+  local other
+  for other in Output/every=1 Time/dt=0.005 Solver/Linear/type=mumps; do
+    rm -rf mp
+    expect_exit_within 120 0 "${MPIRUN[@]}" -np 1 "$EMC" "${opts[@]}" --output mp : \
+      -np 1 "$EMC" "${opts[@]}" --set "$other" --output mp
+    expect_err "^warning: rank 1 was started with other arguments than rank 0; every rank runs"
+    cmp same/monitors.csv mp/monitors.csv
+  done
+}
+
+hostile_mpmd_other_input_files_run_rank0s() {
+  mkdir r0 r1
+  emc_good_input r0/in.xml
+  sed 's/name="end" type="double" value="0.02"/name="end" type="double" value="0.05"/' \
+    r0/in.xml >r1/in.xml
+  cmp -s r0/in.xml r1/in.xml && { echo "r1/in.xml not changed"; return 1; }
+  # the same command line, in directories whose in.xml differ (per-node copies of a file)
+  expect_exit_within 120 0 "${MPIRUN[@]}" -np 1 -wdir "$PWD/r0" "$EMC" in.xml --output "$PWD/mp" : \
+    -np 1 -wdir "$PWD/r1" "$EMC" in.xml --output "$PWD/mp"
+  expect_exit_within 120 0 "${MPIRUN[@]}" -np 2 -wdir "$PWD/r0" "$EMC" in.xml --output "$PWD/same"
+  cmp same/monitors.csv mp/monitors.csv
+}
