@@ -2,10 +2,12 @@
 // Newton on the full residual of eq. 20, reduced by the elimination (docs/THEORY.md §1.6, §3):
 //   (P^T A P + D) dq = -P^T g,  u_{n+1} += P dq,
 // converged when ||P^T g|| <= max(rtol ||P^T g_0||, atol, 100 eps ||scale||), where scale
-// bounds the round-off of g's four terms and g_0 is the solve's start iterate or, for a re-solve
-// of the active-set loop started from the last solution, the largest start residual of the
-// step's solves if that is larger. No step is ever accepted unconverged (a search solve of the
-// active-set loop, docs/THEORY.md §6.9, stops earlier, but the step's last solve is a full one).
+// bounds the round-off of g's four terms and of the iterate's own rounding and g_0 is the
+// solve's start iterate or, for a re-solve of the active-set loop started from the last
+// solution, the largest start residual of the step's solves if that is larger; the start
+// iterate itself only at the round-off floor (atol applies to Newton's own iterates). No step is
+// ever accepted unconverged (a search solve of the active-set loop, docs/THEORY.md §6.9, stops
+// earlier, but the step's last solve is a full one).
 #include <Teuchos_ParameterList.hpp>
 #include <functional>
 #include <string>
