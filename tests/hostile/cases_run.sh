@@ -248,7 +248,7 @@ hostile_checkpoint_bad_entry_states_refused() {
   local edit want
   for edit in drop-last slip-2 slip-no-direction dir-nan off-while-sliding flip-slip; do
     case $edit in
-      drop-last) want="active set has [0-9]+ nodes and [0-9]+ state values \\(5 per" ;;
+      drop-last) want="dataset state has [0-9]+ values \\(allowed: 0 or [0-9]+, 5 per active node" ;;
       slip-2) want="slip = 2.* \\(allowed: 0 or 1\\)" ;;
       slip-no-direction) want="slip = 1 with a direction of length 0" ;;
       dir-nan) want="slip direction of length (nan|-nan)" ;;
