@@ -1,4 +1,4 @@
-# Issue 18, "Hangs and crashes" and "Silent wrong results": runs that must end (no hang, no
+# Hangs, crashes and silent wrong results: runs that must end (no hang, no
 # crash, one line), time steps that cannot advance, SIGTERM, XML depth, untrusted checkpoints,
 # solver exceptions, non-regular files, restarts.
 

@@ -11,7 +11,7 @@
 
 namespace emc::app {
 
-/// Rank 0 applies the rule for a directory holding an earlier run's files (README, "Output"):
+/// Rank 0 applies the rule for a directory holding an earlier run's files (docs/user-guide.md):
 /// a new run refuses it unless --overwrite, which removes exactly those files; a restart from a
 /// checkpoint in the directory continues there; a restart into another directory (a branch) is
 /// a new run there. A refusal comes before anything is created (when the directory exists,
