@@ -1,4 +1,4 @@
-// Kernel benchmarks (issue: speed and scaling). Counters are per core: Kokkos is Serial in
+// Kernel benchmarks (perf/README.md, "Kernels"). Counters are per core: Kokkos is Serial in
 // Debian's Trilinos, so one process = one core.
 //   BM_EmTet4          energy-momentum force + exact 12x12 tangent of one element (kernel only)
 //   BM_Assembly        the whole assembly driver: import, kernels, scatter into the FECrsMatrix

@@ -1,4 +1,4 @@
-// Contact search benchmarks (docs/THEORY.md §2.5; issue 15): the grid of the master facets (Views,
+// Contact search benchmarks (docs/THEORY.md §2.5): the grid of the master facets (Views,
 // built in parallel) and the queries of the slave nodes, one by one on the host and in the
 // parallel batch query. Counters are per core: Kokkos is Serial in Debian's Trilinos.
 //   BM_ContactSearch          grid built from host containers, then 100k random queries

@@ -2,7 +2,7 @@
 """The paper's ball (inputs/ball.xml) with and without `close gap` (docs/THEORY.md §7): per
 impact the contact period, the rebound (vertical momentum after / before), the spin about the
 centre of mass and the largest active gap; the energy error and Newton iterations of the run.
-Writes perf/results/closure.json, docs/ball_gap_closure.png and the table in README.md between
+Writes perf/results/closure.json, docs/ball_gap_closure.png and the table in perf/README.md between
 <!-- closure:begin --> and <!-- closure:end -->.
 
     /usr/bin/python3 perf/closure_report.py [--build build] [--reuse]
@@ -134,7 +134,7 @@ def main():
     fig.savefig(os.path.join(ROOT, 'docs', 'ball_gap_closure.png'), dpi=90)
     text = ('Measured %s by `/usr/bin/python3 perf/closure_report.py` (inputs/ball.xml, full stick '
             'on the rigid ground, dt = 1 ms, 2.5 s).\n\n' % datetime.date.today().isoformat()) + table(runs)
-    replace_section(os.path.join(ROOT, 'README.md'), 'closure', text)
+    replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'closure', text)
     print(text)
 
 

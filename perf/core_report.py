@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """Runs the elastodynamics-core cases and writes the measured figures (conservation errors,
-wall time per step) to perf/results/core.json and into README.md between the markers
+wall time per step) to perf/results/core.json and into perf/README.md between the markers
 <!-- core:begin --> and <!-- core:end -->.
 
 Usage (from the repository root, after building into build/):
-    /usr/bin/python3 perf/core_report.py [--build build] [--no-readme]
+    /usr/bin/python3 perf/core_report.py [--build build] [--no-readme]   (--no-readme: print only)
 """
 import argparse, csv, datetime, json, os, platform, re, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -94,7 +94,7 @@ def main():
     text = '\n'.join(md)
     print(text)
     if not a.no_readme:
-        replace_section(os.path.join(ROOT, 'README.md'), 'core', text)
+        replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'core', text)
 
 
 if __name__ == '__main__':

@@ -2,7 +2,7 @@
 """Runs the paper's examples (inputs/ball.xml, and the frictionless ones when present, and the ball
 with Coulomb friction, inputs/ball_friction.xml), copies
 their plots to docs/, and writes the measured figures to perf/results/examples.json and into
-README.md between <!-- examples:begin --> and <!-- examples:end -->.
+perf/README.md between <!-- examples:begin --> and <!-- examples:end -->.
 
 Usage (from the repository root, after building):
     /usr/bin/python3 perf/examples_report.py [--build build] [--only ball] [--only ball_friction]
@@ -147,10 +147,10 @@ def main():
     for name, _ in EXAMPLES:
         if name in res and os.path.exists(os.path.join(ROOT, 'docs', name + '_energies.png')):
             what = 'energies (with the dissipated D and E + D), L' if res[name].get('dissipated', 0) else 'energies, L'
-            md.append('![%s: %s and J against time](docs/%s_energies.png)' % (name, what, name))
+            md.append('![%s: %s and J against time](../docs/%s_energies.png)' % (name, what, name))
     text = '\n'.join(md)
     print(text)
-    replace_section(os.path.join(ROOT, 'README.md'), 'examples', text)
+    replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'examples', text)
 
 
 if __name__ == '__main__':

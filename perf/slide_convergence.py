@@ -8,7 +8,7 @@ docs/THEORY.md between <!-- slide_convergence:begin --> and <!-- slide_convergen
     /usr/bin/python3 perf/slide_convergence.py [--build build] [--dt 0.01 0.005 0.0025]
                                                [--h 0.05 0.1]
 """
-import argparse, csv, datetime, os, re, subprocess, sys, time
+import argparse, csv, os, re, subprocess, sys, time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
 
@@ -70,11 +70,11 @@ def main():
                 print(lines[-1], '(%.0f s)' % wall, flush=True)
     if args.no_write:
         return
-    text = ('Measured %s by `/usr/bin/python3 perf/slide_convergence.py --dt %s --h %s --young %s` '
+    text = ('Measured by `/usr/bin/python3 perf/slide_convergence.py --dt %s --h %s --young %s` '
             '(tests/regression/slide.xml with `--set Time/dt=...`, `Bodies/block/Mesh/size`, '
             '`Bodies/block/Material/young`; closed forms v^2 / (2 mu g) = %.6f m, '
             'mu g = %.4f m/s^2).\n\n' %
-            (datetime.date.today().isoformat(), ' '.join('%g' % x for x in args.dt),
+            (' '.join('%g' % x for x in args.dt),
              ' '.join('%g' % x for x in args.h), ' '.join('%g' % x for x in args.young),
              V0 * V0 / (2 * MU * G), MU * G))
     replace_section(os.path.join(ROOT, 'docs', 'THEORY.md'), 'slide_convergence',

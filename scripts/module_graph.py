@@ -10,7 +10,7 @@ fails (exit 1, one line per problem) if
   - anything includes a private header through the source root ("src/...");
   - a test, benchmark or tool includes a header that is neither public (emcontact/...,
     kernels/...) nor its own (next to it or under tests/).
-Usage: module_graph.py [SOURCE_DIR] [--mermaid]  (--mermaid prints the graph for the README).
+Usage: module_graph.py [SOURCE_DIR] [--mermaid]  (--mermaid prints the graph for the docs).
 """
 import pathlib
 import re

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Makes docs/ball_impact.png, the README's picture: runs inputs/ball.xml to just past its first
+# Makes docs/ball_impact.png, the user guide's picture: runs inputs/ball.xml to just past its first
 # impact (t = 0.39 s, field output every 5 steps, in a temporary directory) and renders, with
 # ParaView's pvpython and tools/render_fields.py, the frame with the most nodes in contact, cut
 # at the mid y plane and coloured by the von Mises stress.

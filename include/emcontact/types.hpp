@@ -1,6 +1,6 @@
 #pragma once
 // The only place naming Scalar/LO/GO/Node and the Tpetra aliases (Debian's Trilinos 13.2 has
-// explicit instantiations only for <double, int, long long, Serial>: see README "Toolchain").
+// explicit instantiations only for <double, int, long long, Serial>: docs/developer-guide.md).
 #include <Kokkos_Core.hpp>
 #include <Tpetra_Core.hpp>
 #include <Tpetra_CrsMatrix.hpp>

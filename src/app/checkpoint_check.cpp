@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "emcontact/contact/active.hpp"
+#include "emcontact/contact/detection.hpp"  // entry_rule, kernels::facet_outside
 #include "emcontact/error.hpp"
 
 namespace emc::app {
@@ -41,6 +42,13 @@ std::string first_difference(const std::string& stored, const std::string& input
   return "";
 }
 
+/// `v` with 17 significant digits (exact), as the monitors hold it.
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {
   throw Error(path + ": " + what +
               "; refused (not a checkpoint of this input's model, or corrupt)");
@@ -58,6 +66,12 @@ void check_scalars(const output::Checkpoint& c, const std::string& path) {
   need(std::isfinite(c.newton_contraction), "newton_contraction", c.newton_contraction, "finite");
   need(std::isfinite(c.nominal_dt) && c.nominal_dt > 0, "nominal_dt", c.nominal_dt,
        "a finite step > 0");
+  // the stepper's step sizes never exceed its Time/dt (cuts halve them, regrowth stops there)
+  if (c.dt > c.nominal_dt || c.last_h > c.nominal_dt)
+    refuse(path, "the checkpoint's " + std::string(c.dt > c.nominal_dt ? "dt = " : "last_h = ") +
+                     number(c.dt > c.nominal_dt ? c.dt : c.last_h) +
+                     " is above the Time/dt of its run, " + number(c.nominal_dt) +
+                     " (allowed: at most that)");
 }
 
 void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
@@ -115,9 +129,24 @@ void check_state(const double* p, const contact::Pair& pair, int slave, const st
        "slip = 1 with a direction of length " + std::to_string(norm) + " (allowed: 1)");
 }
 
+/// docs/THEORY.md §2.4, §5.5: an entry lies on its facet within the edge extension of
+/// activation (xi clamped to the triangle at activation; a sliding entry beyond it is off and
+/// released at the end of its step), except a sticking Coulomb entry that slid off its facet
+/// (off = 1, §11.7), which keeps the xi it slid to.
+void check_xi(const double* xi, bool off, const contact::Pair& pair, int slave,
+              const std::string& path) {
+  const double edge = contact::entry_rule(pair).edge, outside = kernels::facet_outside(xi);
+  if (outside > edge && !off)
+    refuse(path, "the checkpoint's active node " + std::to_string(slave) + " of pair " + pair.name +
+                     " has xi = (" + number(xi[0]) + ", " + number(xi[1]) +
+                     "), outside its facet by " + number(outside) + " (allowed: up to " +
+                     number(edge) + ", the edge extension of activation)");
+}
+
 void check_active(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
   static const std::vector<contact::Pair> none;
   const auto& pairs = sim.contact ? sim.contact->pairs() : none;
+  std::vector<char> seen(sim.model.num_nodes(), 0);
   for (std::size_t k = 0; k + contact::kPackedActive <= c.active.size();
        k += contact::kPackedActive) {
     const int slave = index_in(c.active[k], sim.model.num_nodes(), "node", path);
@@ -126,12 +155,17 @@ void check_active(const output::Checkpoint& c, const Simulation& sim, const std:
     if (!std::binary_search(pair.slaves.begin(), pair.slaves.end(), slave))
       refuse(path, "the checkpoint's active node " + std::to_string(slave) +
                        " is not a slave node of pair " + pair.name);
+    if (seen[slave]++)  // one entry per slave node: its unknowns are eliminated once (§3)
+      refuse(path, "the checkpoint's active node " + std::to_string(slave) +
+                       " is listed twice (allowed: one entry per slave node)");
     if (!std::isfinite(c.active[k + 3]) || !std::isfinite(c.active[k + 4]) ||
         !std::isfinite(c.normal_force[k / contact::kPackedActive]))
       refuse(path, "the checkpoint's active node " + std::to_string(slave) +
                        " has coordinates or a normal force that are not finite");
     const std::size_t entry = k / contact::kPackedActive;
-    if (!c.state.empty()) check_state(&c.state[entry * contact::kPackedState], pair, slave, path);
+    const double* state = c.state.empty() ? nullptr : &c.state[entry * contact::kPackedState];
+    if (state) check_state(state, pair, slave, path);
+    check_xi(&c.active[k + 3], state && state[4] == 1, pair, slave, path);
   }
 }
 
@@ -170,12 +204,38 @@ std::string model_fingerprint(const Simulation& sim) {
   return os.str();
 }
 
-void check_checkpoint(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
-  const std::string diff = first_difference(c.model, model_fingerprint(sim));
+void check_model(const std::string& model, const Simulation& sim, const std::string& path) {
+  const std::string diff = first_difference(model, model_fingerprint(sim));
   if (!diff.empty()) refuse(path, "written for another model: " + diff);
+}
+
+void check_checkpoint(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
+  check_model(c.model, sim, path);
   check_scalars(c, path);
   check_arrays(c, sim, path);
   check_active(c, sim, path);
+}
+
+void check_against_monitors(const output::Checkpoint& c,
+                            const std::vector<output::MonitorRow>& rows, const std::string& path,
+                            const std::string& monitors) {
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (!(rows[i].time > rows[i - 1].time))
+      throw Error(monitors + ": t = " + number(rows[i].time) + " at step " +
+                  std::to_string(rows[i].step) + " is not after t = " + number(rows[i - 1].time) +
+                  " at step " + std::to_string(rows[i - 1].step) +
+                  " (allowed: times that increase from row to row)");
+  if (rows.empty()) throw Error(monitors + ": no row for the checkpoint's step");
+  const output::MonitorRow& row = rows.back();
+  auto need = [&](bool ok, const std::string& what, double mine, double theirs) {
+    if (!ok)
+      refuse(path, "the checkpoint's " + what + " = " + number(mine) + " at step " +
+                       std::to_string(c.step) + " disagrees with " + monitors + " (" + what +
+                       " = " + number(theirs) + " in the row of that step)");
+  };
+  // both hold the same doubles, written to 17 digits: equal bit for bit
+  need(c.t == row.time, "t", c.t, row.time);
+  if (c.step > 0) need(c.last_h == row.dt, "last step size (dt of the row)", c.last_h, row.dt);
 }
 
 }  // namespace emc::app

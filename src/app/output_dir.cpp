@@ -1,7 +1,11 @@
 // The output directory of a run: the non-empty-directory rule and the lock (output_dir.hpp).
 #include "emcontact/app/output_dir.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include "emcontact/error.hpp"
 #include "emcontact/output/atomic_file.hpp"
@@ -10,11 +14,11 @@
 namespace emc::app {
 namespace {
 
-/// Whether `a` and `b` name the same existing directory.
-bool same_directory(const std::string& a, const std::string& b) {
+/// Whether `a` names the directory held by `dir`.
+bool same_directory(const std::string& a, const output::Directory& dir) {
   struct stat sa {
   }, sb{};
-  return ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 && sa.st_dev == sb.st_dev &&
+  return ::stat(a.c_str(), &sa) == 0 && ::fstat(dir.fd(), &sb) == 0 && sa.st_dev == sb.st_dev &&
          sa.st_ino == sb.st_ino;
 }
 
@@ -26,12 +30,27 @@ std::string short_list(const std::vector<std::string>& names) {
   return s;
 }
 
+/// Whether `dir` has an entry `name` (a link counts, not followed).
+bool has_entry(const output::Directory& dir, const char* name) {
+  struct stat st {};
+  return ::fstatat(dir.fd(), name, &st, AT_SYMLINK_NOFOLLOW) == 0;
+}
+
+/// Whether anything (a link too) is at `path`; throws naming it if that cannot be known.
+bool exists(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) return true;
+  if (errno == ENOENT) return false;
+  throw Error("cannot create directory '" + path + "': " + std::strerror(errno));
+}
+
 }  // namespace
 
 OutputDirectory::OutputDirectory(const Options& opt, const output::Settings& output,
                                  const Comm& comm) {
-  path_ = opt.output_dir.empty() ? output.directory : opt.output_dir;
   if (!opt.restart.empty()) source_ = output::parent_directory(opt.restart);
+  // a restart continues in its checkpoint's directory unless --output names another
+  path_ = !opt.output_dir.empty() ? opt.output_dir : !source_.empty() ? source_ : output.directory;
   if (path_.empty())
     throw InputError(opt.input +
                      ": parameter 'Output/directory': empty; allowed: a directory name "
@@ -50,22 +69,37 @@ OutputDirectory::OutputDirectory(const Options& opt, const output::Settings& out
 }
 
 void OutputDirectory::prepare(const Options& opt) {
-  output::make_directory(path_);
-  lock_ = output::DirectoryLock(path_);
-  if (!opt.restart.empty() && same_directory(source_, path_)) {
+  bool locked = false;
+  if (exists(path_)) {  // a refusal comes before anything is created in it
+    dir_ = output::Directory(path_);
+    if (has_entry(dir_, ".emcontact.lock")) {
+      lock_ = output::DirectoryLock(dir_);
+      locked = true;
+    }
+    earlier_files_go(opt);
+  } else {
+    output::make_directory(path_);
+    dir_ = output::Directory(path_);
+  }
+  if (!locked) lock_ = output::DirectoryLock(dir_);
+  if (earlier_files_go(opt)) output::remove_owned_files(dir_);  // the rule under the lock
+}
+
+bool OutputDirectory::earlier_files_go(const Options& opt) const {
+  if (!opt.restart.empty() && same_directory(source_, dir_)) {
     if (opt.overwrite)
       throw Error("--overwrite with --restart " + opt.restart + ": the restart continues in '" +
                   path_ + "' and needs its files; drop --overwrite or choose another --output");
-    return;  // continues the run of this directory
+    return false;  // continues the run of this directory
   }
-  const auto owned = output::owned_files(path_);
-  if (owned.empty()) return;
+  const auto owned = output::owned_files(dir_);
+  if (owned.empty()) return false;
   if (!opt.overwrite)
     throw Error("output directory '" + path_ + "' holds the files of an earlier run (" +
                 short_list(owned) +
                 "); add --overwrite to replace them, --restart DIR/checkpoint.h5 to continue "
                 "that run, or choose another --output");
-  output::remove_owned_files(path_);
+  return true;
 }
 
 }  // namespace emc::app

@@ -7,6 +7,7 @@
 #include "emcontact/app/checkpoint_check.hpp"
 #include "emcontact/contact/active.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/checkpoint.hpp"
 #include "emcontact/parallel.hpp"
 #include "emcontact/time/interrupt.hpp"
@@ -91,9 +92,41 @@ void scatter_active(const output::Checkpoint& c, Simulation& sim) {
   }
 }
 
+/// What the input's model needs of a checkpoint, checked before its datasets are read: its
+/// fingerprint, 3 values per node, at most one entry per slave node.
+output::CheckpointShape checkpoint_shape(const Simulation& sim, const std::string& path) {
+  static_assert(output::kActiveValues == contact::kPackedActive);
+  static_assert(output::kStateValues == contact::kPackedState);
+  output::CheckpointShape shape;
+  shape.values = sim.model.X.size();
+  if (sim.contact)
+    for (const auto& p : sim.contact->pairs()) shape.max_entries += p.slaves.size();
+  shape.check_model = [&sim, path](const std::string& model) { check_model(model, sim, path); };
+  return shape;
+}
+
+/// The rows of the checkpoint's directory's monitors.csv up to its step, checked: steps 0 to
+/// the checkpoint's, each once, in time order, and the checkpoint's t and last step size as its
+/// row has them.
+std::vector<output::MonitorRow> kept_monitors(const output::Checkpoint& c,
+                                              const std::string& path) {
+  const std::string file = output::parent_directory(path) + "/monitors.csv";
+  std::vector<output::MonitorRow> rows;
+  try {
+    for (const auto& r : output::read_monitors(file))
+      if (r.step <= c.step) rows.push_back(r);
+    check_monitor_steps(rows, c.step, file);
+  } catch (const std::exception& e) {
+    throw Error(std::string("--restart ") + path + ": " + e.what());
+  }
+  check_against_monitors(c, rows, path, file);
+  return rows;
+}
+
 }  // namespace
 
-void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path) {
+void save_checkpoint(const Simulation& sim, const RootGather& dofs, const output::Directory& dir,
+                     const std::string& name) {
   const auto& s = sim.state;
   output::Checkpoint c;
   copy_scalars(s, c);
@@ -104,19 +137,20 @@ void save_checkpoint(const Simulation& sim, const RootGather& dofs, const std::s
   int has = s.last_increment.is_null() ? 0 : 1;
   if (has) c.last_increment = dofs(*s.last_increment);
   gather_active(sim, c);
-  if (sim.disc->comm()->getRank() == 0) output::write_checkpoint(path, c);
+  if (sim.disc->comm()->getRank() == 0) output::write_checkpoint(dir, name, c);
   sim.disc->comm()->barrier();
 }
 
-void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string& path) {
+RestartInput read_restart(const Simulation& sim, const std::string& path) {
   const auto& comm = *sim.disc->comm();
-  output::Checkpoint c;
+  RestartInput in;
   std::string error;
   if (comm.getRank() == 0) {
     try {
-      c = output::read_checkpoint(path);
-      check_checkpoint(c, sim, path);
-      check_time(c, *sim.stepper, path);
+      in.checkpoint = output::read_checkpoint(path, checkpoint_shape(sim, path));
+      check_checkpoint(in.checkpoint, sim, path);
+      check_time(in.checkpoint, *sim.stepper, path);
+      in.rows = kept_monitors(in.checkpoint, path);
     } catch (const std::exception& e) {
       error = e.what();
     }
@@ -124,6 +158,13 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
   std::vector<char> msg(error.begin(), error.end());
   broadcast_vector(comm, msg);
   if (!msg.empty()) throw InputError(std::string(msg.begin(), msg.end()));
+  return in;
+}
+
+output::MonitorRow apply_restart(Simulation& sim, const RootGather& dofs, RestartInput& in,
+                                 const std::string& path) {
+  const auto& comm = *sim.disc->comm();
+  output::Checkpoint& c = in.checkpoint;
   std::vector<double> scalars = c.scalars();
   scalars.push_back(double(c.last_increment.size()));
   broadcast_vector(comm, scalars);
@@ -150,16 +191,29 @@ void load_checkpoint(Simulation& sim, const RootGather& dofs, const std::string&
     sim.contact->select(*s.u, *s.u, sim.contact->gather(s.active));
     sim.contact->mark_kept_gaps(s.active, sim.contact->positions(*s.u));
   }
+  // the preconditioner starts fresh, as after a checkpoint
+  sim.solver->invalidate();
+  sim.elim->forget_graph();
+  c = output::Checkpoint();  // loaded: only the monitors rows are kept
+  output::MonitorRow row0;
+  if (comm.getRank() == 0) row0 = in.rows.front();
+  double e0[2] = {row0.total, in.rows.empty() ? 0.0 : in.rows.back().dissipated};
+  Teuchos::broadcast(comm, 0, 2, e0);  // every rank needs E0 for the energy error
+  row0.total = e0[0];
+  // docs/THEORY.md §11.7: D goes on from the checkpoint step's row (written to round-trip)
+  s.dissipated = e0[1];
+  return row0;
 }
 
-std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs, const std::string& path,
-                            long kept) {
+std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs,
+                            const output::Directory& dir, long kept) {
+  const std::string path = dir.path("checkpoint.h5");
   const auto& s = sim.state;
   char buf[160];
   std::snprintf(buf, sizeof buf, "stopped by %s after step %ld (t = %.6g); ",
                 time::signal_name(time::stop_signal()), s.step, s.t);
   if (kept < 0 || kept == s.step) {
-    if (kept < 0) save_checkpoint(sim, dofs, path);
+    if (kept < 0) save_checkpoint(sim, dofs, dir, "checkpoint.h5");
     return buf + ("continue with --restart " + path);
   }
   return buf + ("continue with --restart " + path + " (step " + std::to_string(kept) +
@@ -172,16 +226,24 @@ bool same_file(const std::string& a, const std::string& b) {
   return !a.empty() && std::filesystem::equivalent(a, b, ec) && !ec;
 }
 
-void check_monitor_steps(const std::vector<output::MonitorRow>& rows, const std::string& file) {
+void check_monitor_steps(const std::vector<output::MonitorRow>& rows, long step,
+                         const std::string& file) {
+  const std::string keeps =
+      " (a restart keeps the rows of steps 0 to " + std::to_string(step) + ", each once, in order)";
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (rows[i].step == static_cast<long>(i)) continue;
-    throw Error(file +
-                (rows[i].step > static_cast<long>(i)
-                     ? ": no row for step " + std::to_string(i)
-                     : ": step " + std::to_string(rows[i].step) + " given twice") +
-                " (a restart keeps the rows of steps 0 to " + std::to_string(rows.back().step) +
-                ", each once)");
+    const long s = rows[i].step, want = static_cast<long>(i);
+    if (s == want) continue;
+    if (s < 0)
+      throw Error(file + ": a row has the negative step " + std::to_string(s) +
+                  " (no row for step " + std::to_string(want) + ")" + keeps);
+    if (s > want) throw Error(file + ": no row for step " + std::to_string(want) + keeps);
+    throw Error(file + ": step " + std::to_string(s) +
+                (s == rows[i - 1].step ? " given twice"
+                                       : " after step " + std::to_string(rows[i - 1].step)) +
+                keeps);
   }
+  if (rows.empty() || rows.back().step != step)
+    throw Error(file + ": no row for the checkpoint's step " + std::to_string(step));
 }
 
 }  // namespace emc::app

@@ -27,7 +27,6 @@
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
-#include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/fields.hpp"
 #include "emcontact/output/monitors.hpp"
 #include "emcontact/time/interrupt.hpp"
@@ -129,62 +128,24 @@ struct Writers {
   }
 };
 
-Writers make_writers(const fem::Discretization& disc, const std::string& dir, int every) {
+/// The writers into `dir` (rank 0) and the gathers (every rank); `dofs` is built before, for
+/// the restart.
+Writers make_writers(const fem::Discretization& disc, const OutputDirectory& dir, int every,
+                     std::unique_ptr<RootGather> dofs) {
   Writers w;
   w.every = every;
   const auto& model = disc.model();
   const bool root = disc.comm()->getRank() == 0;
-  if (root) {
-    output::make_directory(dir);
-    w.monitors = std::make_unique<output::MonitorWriter>(dir + "/monitors.csv");
-  }
-  w.dofs = std::make_unique<RootGather>(disc.owned_map(), 3LL * model.num_nodes());
+  if (root) w.monitors = std::make_unique<output::MonitorWriter>(dir.dir(), "monitors.csv");
+  w.dofs = std::move(dofs);
   if (every > 0) {
     w.tets = std::make_unique<RootGather>(disc.element_map(), model.num_tets());
     if (root) {
       std::vector<long long> tets(model.tets.begin(), model.tets.end());
-      w.fields = std::make_unique<output::FieldWriter>(dir, model.X, tets, model.body_of_tet);
+      w.fields = std::make_unique<output::FieldWriter>(dir.dir(), model.X, tets, model.body_of_tet);
     }
   }
   return w;
-}
-
-/// --restart: the state from the checkpoint, the monitors of the output directory up to its
-/// step (returned: the initial row); the preconditioner starts fresh, as after a checkpoint.
-output::MonitorRow restart(Simulation& sim, const RootGather& dofs, const std::string& file,
-                           const std::string& dir, Writers& w) {
-  load_checkpoint(sim, dofs, file);
-  sim.solver->invalidate();
-  sim.elim->forget_graph();
-  std::vector<output::MonitorRow> rows;
-  std::string error;
-  const auto& comm = *sim.disc->comm();
-  if (comm.getRank() == 0) {
-    try {
-      for (const auto& r : output::read_monitors(dir + "/monitors.csv"))
-        if (r.step <= sim.state.step) rows.push_back(r);
-      if (rows.empty() || rows.back().step != sim.state.step)
-        throw Error(dir + "/monitors.csv: no row for the checkpoint's step " +
-                    std::to_string(sim.state.step));
-      check_monitor_steps(rows, dir + "/monitors.csv");
-    } catch (const std::exception& e) {
-      error = std::string("--restart ") + file + ": " + e.what();
-    }
-  }
-  long long failed = error.empty() ? 0 : 1;
-  Teuchos::broadcast(comm, 0, 1, &failed);
-  if (failed) throw InputError(comm.getRank() == 0 ? error : "restart failed");
-  output::MonitorRow row0;
-  if (comm.getRank() == 0) {
-    for (const auto& r : rows) w.monitors->append(r);
-    row0 = rows.front();
-  }
-  double e0[2] = {row0.total, rows.empty() ? 0.0 : rows.back().dissipated};
-  Teuchos::broadcast(comm, 0, 2, e0);  // every rank needs E0 for the energy error
-  row0.total = e0[0];
-  // docs/THEORY.md §11.7: D goes on from the checkpoint step's row (written to round-trip)
-  sim.state.dissipated = e0[1];
-  return row0;
 }
 
 /// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
@@ -274,9 +235,18 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
 
   const output::Settings out = output::settings(P.sublist("Output"));
   Summary sum;
-  const OutputDirectory output_dir(opt, out, *comm);  // locked until the run returns
+  auto dofs = std::make_unique<RootGather>(disc.owned_map(), 3LL * model.num_nodes());
+  auto row0 = monitor_row(disc, state, time::StepReport{});
+  // --restart: the checkpoint and its monitors are read, checked and loaded before anything is
+  // written (a refused restart leaves the output directory as it was, or not created)
+  RestartInput restart;
+  if (!opt.restart.empty()) {
+    restart = read_restart(*sim, opt.restart);
+    row0 = apply_restart(*sim, *dofs, restart, opt.restart);
+  }
+  const OutputDirectory output_dir(opt, out, *comm);  // held open and locked until the run returns
   sum.output_dir = output_dir.path();
-  Writers w = make_writers(disc, sum.output_dir, out.every);
+  Writers w = make_writers(disc, output_dir, out.every, std::move(dofs));
   const bool root = comm->getRank() == 0;
   Progress progress(root && out.progress, stepper.end());
 
@@ -284,9 +254,9 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   sum.nodes = model.num_nodes();
   comm->barrier();
   sum.setup_seconds = clock.totalElapsedTime(true);
-  auto row0 = monitor_row(disc, state, time::StepReport{});
-  if (!opt.restart.empty()) {
-    row0 = restart(*sim, *w.dofs, opt.restart, output_dir.restart_source(), w);
+  if (!opt.restart.empty()) {  // the monitors up to the checkpoint's step, its frames
+    if (root)
+      for (const auto& r : restart.rows) w.monitors->append(r);
     if (w.fields) w.fields->resume(state.step);
   } else if (root) {
     w.monitors->append(row0);
@@ -301,7 +271,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   Teuchos::broadcast(*comm, 0, 1, &kept);
   auto stop_on_sigterm = [&]() {
     if (root) w.monitors->flush(true);
-    throw RunError(stop_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5", kept));
+    throw RunError(stop_checkpoint(*sim, *w.dofs, output_dir.dir(), kept));
   };
   try {
     while (!stepper.finished()) {
@@ -330,7 +300,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         // monitors first: a kill between the two leaves rows beyond the checkpoint (ignored by
         // --restart), never a checkpoint without its row (found by kill_and_restart)
         if (root) w.monitors->flush(true);
-        save_checkpoint(*sim, *w.dofs, sum.output_dir + "/checkpoint.h5");
+        save_checkpoint(*sim, *w.dofs, output_dir.dir(), "checkpoint.h5");
         kept = state.step;
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
         sim->elim->forget_graph();
@@ -344,7 +314,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
     if (root) w.monitors->flush(true);
     const std::string file = sum.output_dir + "/checkpoint.h5";
     if (std::string(e.what()).find("stopped by SIG") != std::string::npos) throw;
-    save_checkpoint(*sim, *w.dofs, file);  // the last accepted step, to look at or restart
+    save_checkpoint(*sim, *w.dofs, output_dir.dir(), "checkpoint.h5");  // to look at or restart
     throw RunError(std::string(e.what()) + "; the last accepted step is in " + file);
   } catch (const Error&) {
     progress.finish();
@@ -353,7 +323,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   }
   progress.finish();
   if (root) w.monitors->flush(true);
-  if (root && out.plot) plot_monitors(sum.output_dir);
+  if (root && out.plot) plot_monitors(output_dir.dir());
   sum.steps = state.step;
   sum.time = state.t;
   if (sim->contact) {  // docs/THEORY.md §8: what each rank holds and receives of contact

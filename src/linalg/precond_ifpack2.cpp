@@ -21,7 +21,7 @@ bool of_another_preconditioner(const std::string& name, Preconditioner type) {
 }  // namespace
 
 // `ilu`: RILUK(0); `schwarz`: restricted additive Schwarz with overlap 1 and RILUK(0) inside
-// (measured best of the Ifpack2 options on 2 ranks, see README "Toolchain"). The user's
+// (measured best of the Ifpack2 options on 2 ranks, perf/README.md "Linear solvers"). The user's
 // `Ifpack2` sublist overrides these defaults unchanged.
 Teuchos::RCP<Operator> make_ifpack2(Preconditioner type, const Teuchos::RCP<const Matrix>& A,
                                     const Teuchos::ParameterList& user,

@@ -11,7 +11,7 @@ namespace emc::linalg {
 // they run on threads in a threaded Kokkos build, unlike Gauss-Seidel), whose eigenvalue
 // interval and degree were chosen by measurement (perf/README.md "Linear solvers"). The
 // hierarchy keeps R and P for refresh_muelu. On 2+ ranks Debian's Amesos2 KLU2 coarse solver
-// is wrong (README "Toolchain"), so the coarse level uses Schwarz with local direct solves.
+// is wrong (docs/developer-guide.md), so the coarse level uses Schwarz with local direct solves.
 // The user's `MueLu` sublist overrides any of these.
 Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::ParameterList& user,
                                   const Teuchos::RCP<MultiVector>& nullspace,

@@ -37,11 +37,8 @@ int write_all(int fd, const std::string& content) {
 
 /// Best effort: makes the rename itself durable. Failure here is not an error (some file
 /// systems refuse fsync on directories) since the data was already synced.
-void sync_directory(const std::string& dir) {
-  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  (void)::fsync(fd);
-  ::close(fd);
+void sync_directory(const Directory& dir) {
+  (void)::fsync(dir.fd());
 }
 
 }  // namespace
@@ -54,22 +51,45 @@ std::string parent_directory(const std::string& path) {
   return path.substr(0, slash);
 }
 
-void atomic_write(const std::string& path, const std::string& content) {
-  const TempFile tmp = create_temp(path);
-  int err = write_all(tmp.fd, content);
-  if (err == 0 && ::fsync(tmp.fd) != 0) err = errno;
-  if (::close(tmp.fd) != 0 && err == 0) err = errno;
+void atomic_write(const Directory& dir, const std::string& name, const std::string& content) {
+  TempFile tmp = create_temp(dir, name);
+  const int err = write_all(tmp.fd, content);
   if (err != 0) {
-    ::unlink(tmp.name.c_str());
-    throw os_error("cannot write", path, err);
+    discard_temp(dir, tmp);
+    throw os_error("cannot write", dir.path(name), err);
   }
-  // rename replaces a link planted at `path` itself, never the file it points to
-  if (::rename(tmp.name.c_str(), path.c_str()) != 0) {
-    err = errno;
-    ::unlink(tmp.name.c_str());
-    throw os_error("cannot rename '" + tmp.name + "' to", path, err);
+  commit_temp(dir, tmp, name);
+}
+
+void atomic_write(const std::string& path, const std::string& content) {
+  atomic_write(directory_of(path), base_name(path), content);
+}
+
+Directory directory_of(const std::string& path) {
+  const std::string dir = parent_directory(path);
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) != 0) throw os_error("cannot write", path, errno);
+  if (!S_ISDIR(st.st_mode)) throw os_error("cannot write", path, ENOTDIR);
+  return Directory(dir, true);
+}
+
+void commit_temp(const Directory& dir, TempFile& tmp, const std::string& name) {
+  int err = ::fsync(tmp.fd) != 0 ? errno : 0;
+  if (::close(tmp.fd) != 0 && err == 0) err = errno;
+  tmp.fd = -1;
+  // renameat replaces a link planted at `name` itself, never the file it points to
+  if (err == 0 && ::renameat(dir.fd(), tmp.name.c_str(), dir.fd(), name.c_str()) != 0) err = errno;
+  if (err != 0) {
+    discard_temp(dir, tmp);
+    throw os_error("cannot write", dir.path(name), err);
   }
-  sync_directory(parent_directory(path));
+  sync_directory(dir);
+}
+
+void discard_temp(const Directory& dir, TempFile& tmp) {
+  if (tmp.fd >= 0) ::close(tmp.fd);
+  tmp.fd = -1;
+  ::unlinkat(dir.fd(), tmp.name.c_str(), 0);
 }
 
 void make_directory(const std::string& dir) {

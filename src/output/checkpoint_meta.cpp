@@ -16,6 +16,16 @@ void fnv(std::uint64_t& h, const void* data, std::size_t bytes) {
   for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * kFnvPrime;
 }
 
+/// Whether the attribute holds one value (a scalar dataspace), as written: H5Aread fills as
+/// many values as its dataspace has.
+bool is_single_value(hid_t attr) {
+  const hid_t space = H5Aget_space(attr);
+  if (space < 0) return false;
+  const bool one = H5Sget_simple_extent_type(space) == H5S_SCALAR;
+  H5Sclose(space);
+  return one;
+}
+
 void fnv(std::uint64_t& h, const std::vector<double>& v) {
   const std::uint64_t n = v.size();  // the length too: a moved boundary changes the sum
   fnv(h, &n, sizeof n);
@@ -64,11 +74,14 @@ std::optional<std::string> read_string_attribute(hid_t file, const char* name,
   const hid_t attr = H5Aopen(file, name, H5P_DEFAULT);
   if (attr < 0) throw Error(path + ": cannot read the checkpoint attribute " + name);
   const hid_t type = H5Aget_type(attr);
-  const bool ok = type >= 0 && H5Tget_class(type) == H5T_STRING && !H5Tis_variable_str(type);
+  const bool ok = type >= 0 && H5Tget_class(type) == H5T_STRING && !H5Tis_variable_str(type) &&
+                  is_single_value(attr);
   const std::size_t n = ok ? H5Tget_size(type) : 0;
-  std::string s(n, '\0');
+  hsize_t bytes = 0;  // a corrupt size must not allocate more than the file can hold
+  const bool fits = H5Fget_filesize(file, &bytes) >= 0 && n <= bytes;
+  std::string s(fits ? n : 0, '\0');
   herr_t st = -1;
-  if (ok && n > 0 && n < (std::size_t(1) << 30)) {
+  if (ok && fits && n > 0) {
     const hid_t mem = H5Tcopy(H5T_C_S1);
     H5Tset_size(mem, n);
     st = H5Aread(attr, mem, s.data());
@@ -76,6 +89,7 @@ std::optional<std::string> read_string_attribute(hid_t file, const char* name,
   }
   if (type >= 0) H5Tclose(type);
   H5Aclose(attr);
+  if (!ok) throw Error(path + ": the checkpoint attribute " + name + " is not one string");
   if (st < 0) throw Error(path + ": cannot read the checkpoint attribute " + name);
   s.resize(std::strlen(s.c_str()));
   return s;
@@ -87,11 +101,13 @@ std::optional<std::uint64_t> read_u64_attribute(hid_t file, const char* name,
   const hid_t attr = H5Aopen(file, name, H5P_DEFAULT);
   if (attr < 0) throw Error(path + ": cannot read the checkpoint attribute " + name);
   const hid_t type = H5Aget_type(attr);
-  const bool ok = type >= 0 && H5Tget_class(type) == H5T_INTEGER && H5Tget_size(type) == 8;
+  const bool ok = type >= 0 && H5Tget_class(type) == H5T_INTEGER && H5Tget_size(type) == 8 &&
+                  is_single_value(attr);
   std::uint64_t v = 0;
   const herr_t st = ok ? H5Aread(attr, H5T_NATIVE_UINT64, &v) : -1;
   if (type >= 0) H5Tclose(type);
   H5Aclose(attr);
+  if (!ok) throw Error(path + ": the checkpoint attribute " + name + " is not one 64-bit integer");
   if (st < 0) throw Error(path + ": cannot read the checkpoint attribute " + name);
   return v;
 }

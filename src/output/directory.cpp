@@ -1,7 +1,6 @@
 // The output directory's own files and its lock (see directory.hpp).
 #include "emcontact/output/directory.hpp"
 
-#include <dirent.h>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -39,49 +38,48 @@ bool is_owned_temporary(const std::string& name) {
   return at != std::string::npos && is_owned(name.substr(0, at));
 }
 
-std::vector<std::string> entries(const std::string& dir) {
-  DIR* d = ::opendir(dir.c_str());
-  if (d == nullptr) throw Error("cannot list '" + dir + "': " + std::strerror(errno));
-  std::vector<std::string> names;
-  while (const dirent* e = ::readdir(d)) names.emplace_back(e->d_name);
-  ::closedir(d);
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 }  // namespace
 
-std::vector<std::string> owned_files(const std::string& dir) {
+std::vector<std::string> owned_files(const Directory& dir) {
   std::vector<std::string> owned;
-  for (const auto& name : entries(dir))
+  for (const auto& name : dir.entries())
     if (is_owned(name)) owned.push_back(name);
   return owned;
 }
 
-void remove_owned_files(const std::string& dir) {
-  for (const auto& name : entries(dir)) {
+std::vector<std::string> owned_files(const std::string& dir) {
+  return owned_files(Directory(dir, true));
+}
+
+void remove_owned_files(const Directory& dir) {
+  for (const auto& name : dir.entries()) {
     if (!is_owned(name) && !is_owned_temporary(name)) continue;
-    const std::string path = dir + "/" + name;
     struct stat st {};
-    if (::lstat(path.c_str(), &st) != 0 || S_ISDIR(st.st_mode)) continue;
-    if (::unlink(path.c_str()) != 0 && errno != ENOENT)
-      throw Error("--overwrite: cannot remove '" + path + "': " + std::strerror(errno));
+    if (::fstatat(dir.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 || S_ISDIR(st.st_mode))
+      continue;
+    if (::unlinkat(dir.fd(), name.c_str(), 0) != 0 && errno != ENOENT)
+      throw Error("--overwrite: cannot remove '" + dir.path(name) + "': " + std::strerror(errno));
   }
 }
 
-DirectoryLock::DirectoryLock(const std::string& dir) {
-  const std::string path = dir + "/.emcontact.lock";
+void remove_owned_files(const std::string& dir) {
+  remove_owned_files(Directory(dir, true));
+}
+
+DirectoryLock::DirectoryLock(const Directory& dir) {
+  const std::string path = dir.path(".emcontact.lock");
   // O_NOFOLLOW: a link planted there is refused, never followed; O_NONBLOCK: a FIFO planted
   // there does not block the open (and is refused below)
-  fd_ = ::open(path.c_str(), O_RDONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  fd_ = ::openat(dir.fd(), ".emcontact.lock",
+                 O_RDONLY | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
   if (fd_ < 0)
-    throw Error("cannot lock the output directory '" + dir + "': " + path + ": " +
+    throw Error("cannot lock the output directory '" + dir.path() + "': " + path + ": " +
                 std::strerror(errno));
   struct stat st {};
   if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd_);
     fd_ = -1;
-    throw Error("cannot lock the output directory '" + dir + "': " + path +
+    throw Error("cannot lock the output directory '" + dir.path() + "': " + path +
                 " is not a regular file");
   }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
@@ -89,11 +87,13 @@ DirectoryLock::DirectoryLock(const std::string& dir) {
     ::close(fd_);
     fd_ = -1;
     if (err == EWOULDBLOCK)
-      throw Error("output directory '" + dir + "' is in use by another emcontact run (" + path +
-                  " is locked); wait for it or choose another --output");
-    throw Error("cannot lock the output directory '" + dir + "': " + std::strerror(err));
+      throw Error("output directory '" + dir.path() + "' is in use by another emcontact run (" +
+                  path + " is locked); wait for it or choose another --output");
+    throw Error("cannot lock the output directory '" + dir.path() + "': " + std::strerror(err));
   }
 }
+
+DirectoryLock::DirectoryLock(const std::string& dir) : DirectoryLock(Directory(dir, true)) {}
 
 DirectoryLock::~DirectoryLock() {
   if (fd_ >= 0) ::close(fd_);  // releases the lock

@@ -2,7 +2,6 @@
 // ParaView opens (a temporal collection of tetrahedral grids sharing mesh.h5).
 #include "emcontact/output/fields.hpp"
 
-#include <dirent.h>
 #include <hdf5.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -109,10 +108,13 @@ void write_dataset(hid_t file, const std::string& path, const DatasetSpec& d) {
   if (!set.reset()) fail(path, std::string("closing dataset ") + d.name);
 }
 
-/// Writes `datasets` into a new HDF5 file `path`, atomically (built in memory, then renamed).
-void write_hdf5_atomically(const std::string& path, const std::vector<DatasetSpec>& datasets) {
+/// Writes `datasets` into a new HDF5 file `name` of `dir`, atomically (built in memory, then
+/// renamed).
+void write_hdf5_atomically(const Directory& dir, const std::string& name,
+                           const std::vector<DatasetSpec>& datasets) {
   SilenceHdf5Errors quiet;
-  write_hdf5_file(path, [&](hid_t file) {
+  const std::string path = dir.path(name);
+  write_hdf5_file(dir, name, [&](hid_t file) {
     for (const DatasetSpec& d : datasets) write_dataset(file, path, d);
   });
 }
@@ -165,34 +167,34 @@ long frame_step(const std::string& name) {
   return frame_file_name(step) == name ? step : -1;
 }
 
-/// Reads the time stored in the frame file `path`; false if it is not a readable frame (a
-/// regular file only: a FIFO would block the open).
-bool read_frame_time(const std::string& path, double& time) {
-  struct stat st {};
-  if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return false;
+/// Reads the time stored in the frame file `name` of `dir`; false if it is not a readable frame
+/// (a regular file only: a FIFO would block the open; a scalar or one-value float dataset).
+bool read_frame_time(const Directory& dir, const std::string& name, double& time) {
   SilenceHdf5Errors quiet;
-  Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  Handle file(open_hdf5_file(dir, name), H5Fclose);
   if (!file.valid()) return false;
   Handle set(H5Dopen2(file.get(), "/time", H5P_DEFAULT), H5Dclose);
   if (!set.valid()) return false;
   Handle space(H5Dget_space(set.get()), H5Sclose);
+  Handle type(H5Dget_type(set.get()), H5Tclose);
   if (!space.valid() || H5Sget_simple_extent_npoints(space.get()) != 1) return false;
+  if (!type.valid() || H5Tget_class(type.get()) != H5T_FLOAT) return false;
   return H5Dread(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &time) >= 0;
 }
 
-/// The names of the entries of `dir`; throws emc::Error naming it.
-std::vector<std::string> directory_entries(const std::string& dir) {
-  DIR* d = ::opendir(dir.c_str());
-  if (d == nullptr) throw Error("cannot list '" + dir + "': " + std::strerror(errno));
-  std::vector<std::string> names;
-  while (const dirent* e = ::readdir(d)) names.emplace_back(e->d_name);
-  ::closedir(d);
-  return names;
+/// The directory `dir`, created if missing, opened by name.
+Directory made_directory(const std::string& dir) {
+  make_directory(dir);
+  return Directory(dir, true);
 }
 
 }  // namespace
 
-FieldWriter::FieldWriter(std::string dir, const std::vector<double>& X,
+FieldWriter::FieldWriter(const std::string& dir, const std::vector<double>& X,
+                         const std::vector<long long>& tets, const std::vector<int>& body_of_tet)
+    : FieldWriter(made_directory(dir), X, tets, body_of_tet) {}
+
+FieldWriter::FieldWriter(Directory dir, const std::vector<double>& X,
                          const std::vector<long long>& tets, const std::vector<int>& body_of_tet)
     : dir_(std::move(dir)) {
   if (X.size() % 3 != 0) throw Error("FieldWriter: node coordinates are not 3 per node");
@@ -203,9 +205,8 @@ FieldWriter::FieldWriter(std::string dir, const std::vector<double>& X,
     throw Error("FieldWriter: " + std::to_string(body_of_tet.size()) + " body ids for " +
                 std::to_string(num_tets_) + " tetrahedra");
   }
-  make_directory(dir_);
   const hsize_t n = static_cast<hsize_t>(num_nodes_), e = static_cast<hsize_t>(num_tets_);
-  write_hdf5_atomically(dir_ + "/mesh.h5",
+  write_hdf5_atomically(dir_, "mesh.h5",
                         {{"/geometry", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, X.data()},
                          {"/topology", {e, 4}, H5T_STD_I64LE, H5T_NATIVE_LLONG, tets.data()},
                          {"/body", {e}, H5T_STD_I32LE, H5T_NATIVE_INT, body_of_tet.data()}});
@@ -228,7 +229,7 @@ void FieldWriter::write(const FieldFrame& f) {
   const auto& normal = f.normal_force.size() == n ? f.normal_force : zeros;
   const auto& slip = f.slip.size() == n ? f.slip : zeros;
   write_hdf5_atomically(
-      dir_ + "/" + frame_file_name(f.step),
+      dir_, frame_file_name(f.step),
       {{"/displacement", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.displacement.data()},
        {"/velocity", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.velocity.data()},
        {"/von_mises", {e}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.von_mises.data()},
@@ -250,17 +251,16 @@ void FieldWriter::write(const FieldFrame& f) {
 
 void FieldWriter::resume(long step) {
   frames_.clear();
-  for (const std::string& name : directory_entries(dir_)) {
+  for (const std::string& name : dir_.entries()) {
     const long s = frame_step(name);
     if (s < 0) continue;
-    const std::string path = dir_ + "/" + name;
     if (s > step) {  // written after the checkpoint by the earlier run: no longer valid
-      if (::unlink(path.c_str()) != 0 && errno != ENOENT)
-        throw Error("cannot remove '" + path + "': " + std::strerror(errno));
+      if (::unlinkat(dir_.fd(), name.c_str(), 0) != 0 && errno != ENOENT)
+        throw Error("cannot remove '" + dir_.path(name) + "': " + std::strerror(errno));
       continue;
     }
     double time = 0;
-    if (read_frame_time(path, time)) frames_.emplace_back(s, time);
+    if (read_frame_time(dir_, name, time)) frames_.emplace_back(s, time);
   }
   std::sort(frames_.begin(), frames_.end());
   write_xdmf();
@@ -305,7 +305,7 @@ void FieldWriter::write_xdmf() const {
     x += "      </Grid>\n";
   }
   x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
-  atomic_write(dir_ + "/fields.xdmf", x);
+  atomic_write(dir_, "fields.xdmf", x);
 }
 
 }  // namespace emc::output

@@ -1,6 +1,10 @@
 // HDF5 files built in memory and written atomically (see hdf5_file.hpp).
 #include "emcontact/output/hdf5_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "emcontact/error.hpp"
 #include "emcontact/output/atomic_file.hpp"
 
@@ -43,7 +47,9 @@ std::string file_image(hid_t file, const std::string& path) {
 
 }  // namespace
 
-void write_hdf5_file(const std::string& path, const std::function<void(hid_t)>& fill) {
+void write_hdf5_file(const Directory& dir, const std::string& name,
+                     const std::function<void(hid_t)>& fill) {
+  const std::string path = dir.path(name);
   const hid_t fapl = in_memory_access(path);
   const hid_t file = H5Fcreate(kMemoryName, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   H5Pclose(fapl);
@@ -57,7 +63,23 @@ void write_hdf5_file(const std::string& path, const std::function<void(hid_t)>& 
     throw;
   }
   if (H5Fclose(file) < 0) fail(path, "HDF5 cannot close the file");
-  atomic_write(path, image);
+  atomic_write(dir, name, image);
+}
+
+void write_hdf5_file(const std::string& path, const std::function<void(hid_t)>& fill) {
+  write_hdf5_file(directory_of(path), base_name(path), fill);
+}
+
+hid_t open_hdf5_file(const Directory& dir, const std::string& name) {
+  const int fd = ::openat(dir.fd(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return -1;
+  struct stat st {};
+  hid_t file = -1;
+  // the file the descriptor holds, by its /proc name: HDF5 opens only by name
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode))
+    file = H5Fopen(("/proc/self/fd/" + std::to_string(fd)).c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ::close(fd);  // HDF5 holds its own descriptor
+  return file;
 }
 
 void silence_hdf5_errors() {

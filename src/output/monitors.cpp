@@ -176,9 +176,13 @@ std::string format_row(const MonitorRow& r) {
   return s;
 }
 
-MonitorWriter::MonitorWriter(std::string path) : path_(std::move(path)) {
+MonitorWriter::MonitorWriter(Directory dir, std::string name)
+    : dir_(std::move(dir)), name_(std::move(name)) {
   text_ = monitor_header() + '\n';
 }
+
+MonitorWriter::MonitorWriter(const std::string& path)
+    : MonitorWriter(directory_of(path), base_name(path)) {}
 
 void MonitorWriter::append(const MonitorRow& r) {
   rows_.push_back(r);
@@ -193,7 +197,7 @@ void MonitorWriter::flush(bool force, double min_seconds) {
     if (!never_written && written_ == rows_.size()) return;  // nothing new
     if (now - last_write_ < min_seconds) return;             // too soon
   }
-  atomic_write(path_, text_);
+  atomic_write(dir_, name_, text_);
   last_write_ = now;
   written_ = rows_.size();
 }

@@ -9,7 +9,10 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
   using namespace emc::input;
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Output"));
   pl->set("directory", std::string("output"),
-          "Directory of monitors.csv and the field files (created if missing).", any_string());
+          "Directory of monitors.csv and the field files (created if missing; not a symbolic "
+          "link). --output overrides it; so does --restart DIR/checkpoint.h5, which continues "
+          "in DIR.",
+          any_string());
   pl->set("every", 10, "Field output (HDF5/XDMF) every N steps; 0 = no field output.",
           int_at_least(0));
   pl->set("progress", true, "Print a progress line per step on the terminal.");

@@ -25,19 +25,19 @@ std::string random_suffix() {
 
 }  // namespace
 
-TempFile create_temp(const std::string& path) {
+TempFile create_temp(const Directory& dir, const std::string& name, const std::string& suffix) {
   constexpr int kFlags = O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC;
   int err = EEXIST;
   // A name that exists already (planted or left over) is skipped, never opened.
   for (int attempt = 0; attempt < 100 && err == EEXIST; ++attempt) {
     TempFile t;
-    t.name = path + ".tmp." + random_suffix();
-    t.fd = ::open(t.name.c_str(), kFlags, 0644);
+    t.name = name + ".tmp." + random_suffix() + suffix;
+    t.fd = ::openat(dir.fd(), t.name.c_str(), kFlags, 0644);
     if (t.fd >= 0) return t;
     err = errno;
     if (err == EINTR) err = EEXIST;  // try again
   }
-  throw Error("cannot create a temporary file for '" + path + "': " + std::strerror(err));
+  throw Error("cannot create a temporary file for '" + dir.path(name) + "': " + std::strerror(err));
 }
 
 }  // namespace emc::output

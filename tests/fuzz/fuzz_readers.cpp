@@ -1,4 +1,4 @@
-// Fuzz test of the input readers with a corpus of mutated files (see tests/fuzz/README.md):
+// Fuzz test of the input readers with a corpus of mutated files (docs/developer-guide.md):
 //
 //   fuzz_readers xml|msh|set COUNT SEED WORKDIR SEED_FILE...
 //

@@ -1,4 +1,4 @@
-# Output and data-loss cases of issue 18 (security of the output directory, failed writes,
+# Output and data-loss cases (security of the output directory, failed writes,
 # restarts, locking, the non-empty directory rule). run_hostile.sh runs each function in a fresh
 # empty directory; every check ends the case with `|| return 1` (the harness calls the case in a
 # condition, where `set -e` does not apply).
@@ -8,7 +8,7 @@ EMC_QUIET=(--set Output/progress=false)
 EMC_TUMBLE=(--set "Bodies/block/Initial/angular velocity={1,2,3}")
 
 # The plot is run without a shell: quotes, `;`, `$()` and spaces in the directory name stay
-# characters (the issue's reproducer ran `touch pwned`).
+# characters (a name that would run `touch pwned` in a shell).
 hostile_plot_directory_name_is_not_shell_code() {
   emc_good_input in.xml
   local d1="x'; touch pwned1; echo '" d2="y \$(touch pwned2) \`touch pwned3\`; touch pwned4 '"
@@ -196,7 +196,7 @@ hostile_hdf5_error_stack_not_printed() {
 }
 
 # A monitors.csv that cannot be rewritten (disk full) keeps its previous complete version and
-# stops the run in one line naming it, exit 1 (already so before issue 18: a guard).
+# stops the run in one line naming it, exit 1 (a guard).
 hostile_failed_monitors_write_stops_cleanly() {
   emc_good_input in.xml
   expect_exit 1 "${FILE_LIMIT[@]}" 1 "$EMC" in.xml "${EMC_QUIET[@]}" --set Output/every=0 \

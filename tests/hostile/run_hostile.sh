@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Re-runs the hostile and careless uses of issue 18 against the emcontact binary and prints how
+# Re-runs the hostile and careless uses against the emcontact binary and prints how
 # many are handled. Each case is a bash function `hostile_<name>` in one of the cases_*.sh files
 # beside this script; it runs in a fresh, empty working directory (its own subshell) and returns
-# 0 when the binary handles the case as promised (README, "Hostile input").
+# 0 when the binary handles the case as promised (docs/user-guide.md, "What is refused").
 #
 #   tests/hostile/run_hostile.sh BUILD_DIR [name ...]     (default: every case)
 #

@@ -10,7 +10,7 @@ using emc::testing::run_case;
 
 // A free box tumbling with large rotations (|omega| = 4.6 rad/s for 5 s: about 23 rad), no
 // loads: energy-momentum conserves E, L and J to the Newton tolerance (rtol 1e-12 here), far
-// below the 1e-10 the issue asks; the plain mid-point rule conserves L and J but not E.
+// below the 1e-10 asserted here; the plain mid-point rule conserves L and J but not E.
 TEST(Conservation, TumblingBoxEnergyMomentum) {
   const auto rows = run_case("tumbling.xml", {}, "out_tumbling_em");
   ASSERT_EQ(rows.size(), 501u);  // 500 steps + the initial row

@@ -1,4 +1,4 @@
-// Issue 18: a step size that cannot advance time (below the round-off of t, or not finite, as
+// A step size that cannot advance time (below the round-off of t, or not finite, as
 // from a corrupt state) stops the run with a RunError instead of looping forever.
 #include <gtest/gtest.h>
 

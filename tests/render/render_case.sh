@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # render_ball_impact: runs inputs/ball.xml just past its first impact with field output every
 # 5 steps, renders the frame with the most nodes in contact with tools/render_fields.py (whole
-# ball, and cut at mid y as in the README), checks the PNGs, and checks that a bad field name
+# ball, and cut at mid y as in the user guide), checks the PNGs, and checks that a bad field name
 # stops the script with exit code 2 and a message.
 # Usage: render_case.sh EMC PVPYTHON PYTHON SOURCE_DIR OUTDIR
 # Without an X display pvpython runs under xvfb-run; neither there: exit 77 (ctest: skipped).

@@ -1,11 +1,14 @@
 #pragma once
 // Output/plot: DIR/energies.png from DIR/monitors.csv with tools/plot_monitors.py.
-#include <string>
+#include "emcontact/output/open_directory.hpp"
 
 namespace emc::app {
 
-/// Runs the plot script as a child process with an argument vector (no shell, whatever `dir`
-/// holds); waits for it. A failure only warns on stderr.
-void plot_monitors(const std::string& dir);
+/// Runs the plot script as a child process with an argument vector (no shell, whatever the
+/// directory's name holds) in the directory held by `dir` (fchdir: a rename of its name does
+/// not redirect it); waits for it. It reads monitors.csv through a descriptor (/proc/self/fd)
+/// and writes a fresh temporary, which becomes energies.png. A failure only warns on stderr,
+/// with its cause (the script's last line of stderr, or the system's error).
+void plot_monitors(const output::Directory& dir);
 
 }  // namespace emc::app

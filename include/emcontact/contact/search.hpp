@@ -4,7 +4,7 @@
 // projection of a point on the closest valid facet among the candidates of its cell.
 // Everything lives in Views on the node's device (built with labelled parallel kernels); the
 // queries are device functions, so a FacetGrid copied by value into a kernel can be queried
-// there, one thread per slave node (issue 15: ArborX-style search in Views).
+// there, one thread per slave node (an ArborX-style search in Views).
 #include <Kokkos_Core.hpp>
 #include <array>
 #include <cstdint>

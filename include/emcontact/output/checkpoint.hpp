@@ -2,10 +2,18 @@
 // Checkpoint files: the complete state of a run at the end of a step (displacements,
 // velocities, the predictor's last increment, the active contact set with its projection data,
 // normal forces and Coulomb states, step size and counters) in HDF5, written atomically by rank 0.
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "emcontact/output/open_directory.hpp"
+
 namespace emc::output {
+
+/// Values per active entry in Checkpoint::active (slave, pair, facet, xi, eta) and in
+/// Checkpoint::state (slip, direction, off): contact::kPackedActive and contact::kPackedState.
+constexpr std::size_t kActiveValues = 5, kStateValues = 5;
 
 struct Checkpoint {
   long step = 0;
@@ -30,11 +38,24 @@ struct Checkpoint {
   void set_scalars(const std::vector<double>& s, const std::string& path);
 };
 
-/// Writes `path` atomically (temporary name, then rename); throws emc::Error naming it.
+/// What the model that reads a checkpoint needs of it: checked before any dataset is read.
+struct CheckpointShape {
+  std::size_t values = 0;       ///< of u and V (and last_increment, or none): 3 per node
+  std::size_t max_entries = 0;  ///< active entries at most (the slave nodes of its pairs)
+  /// Called with the stored model fingerprint before any dataset is read; throws to refuse it.
+  std::function<void(const std::string& model)> check_model;
+};
+
+/// Writes the file `name` of `dir` atomically (temporary name, then rename); throws emc::Error
+/// naming it.
+void write_checkpoint(const Directory& dir, const std::string& name, const Checkpoint& c);
 void write_checkpoint(const std::string& path, const Checkpoint& c);
 /// Reads a checkpoint; throws emc::Error naming the file and what is wrong: not a regular
-/// file, not a checkpoint, written before checkpoints had a model fingerprint and checksum,
-/// or a checksum that does not match its contents.
+/// file, not a checkpoint, written before checkpoints had a model fingerprint and checksum, a
+/// dataset or attribute of another type, rank or length than written (checked before it is
+/// read), a model `shape.check_model` refuses, or a checksum that does not match its contents.
+Checkpoint read_checkpoint(const std::string& path, const CheckpointShape& shape);
+/// The same without a model: the lengths are only checked against each other.
 Checkpoint read_checkpoint(const std::string& path);
 
 }  // namespace emc::output

@@ -4,14 +4,18 @@
 #include <string>
 #include <vector>
 
+#include "emcontact/output/open_directory.hpp"
+
 namespace emc::output {
 
 /// The names in `dir` of files an emcontact run writes there: monitors.csv, checkpoint.h5,
 /// fields.xdmf, fields_<step>.h5, mesh.h5, energies.png (sorted).
+std::vector<std::string> owned_files(const Directory& dir);
 std::vector<std::string> owned_files(const std::string& dir);
 
 /// Removes the owned files of `dir` and the temporaries left by a killed writer; never any
 /// other file, never a directory. Throws emc::Error naming a file it cannot remove.
+void remove_owned_files(const Directory& dir);
 void remove_owned_files(const std::string& dir);
 
 /// An exclusive lock on DIR/.emcontact.lock (flock), held while the object lives.
@@ -19,6 +23,7 @@ class DirectoryLock {
  public:
   DirectoryLock() = default;
   /// Takes the lock at once or throws emc::Error naming `dir` (another run holds it).
+  explicit DirectoryLock(const Directory& dir);
   explicit DirectoryLock(const std::string& dir);
   ~DirectoryLock();
   DirectoryLock(DirectoryLock&& o) noexcept;

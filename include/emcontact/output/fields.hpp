@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "emcontact/output/open_directory.hpp"
+
 namespace emc::output {
 
 struct FieldFrame {
@@ -20,9 +22,13 @@ struct FieldFrame {
 
 class FieldWriter {
  public:
-  /// DIR/mesh.h5 (geometry X, topology tets, body id per tet) is written once here.
-  FieldWriter(std::string dir, const std::vector<double>& X, const std::vector<long long>& tets,
+  /// DIR/mesh.h5 (geometry X, topology tets, body id per tet) is written once here; every
+  /// file is written, listed and removed relative to `dir`.
+  FieldWriter(Directory dir, const std::vector<double>& X, const std::vector<long long>& tets,
               const std::vector<int>& body_of_tet);
+  /// The same in the directory named `dir` (created if missing).
+  FieldWriter(const std::string& dir, const std::vector<double>& X,
+              const std::vector<long long>& tets, const std::vector<int>& body_of_tet);
   /// Writes DIR/fields_<step>.h5 atomically, then rewrites DIR/fields.xdmf atomically.
   void write(const FieldFrame& f);
   /// After a restart from `step`: lists the frames of DIR at steps <= `step` (their files
@@ -30,7 +36,7 @@ class FieldWriter {
   void resume(long step);
 
  private:
-  std::string dir_;
+  Directory dir_;
   long long num_nodes_ = 0, num_tets_ = 0;
   std::vector<std::pair<long, double>> frames_;  // (step, time)
   void write_xdmf() const;

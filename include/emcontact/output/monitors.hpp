@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "emcontact/output/open_directory.hpp"
+
 namespace emc::output {
 
 struct MonitorRow {
@@ -33,8 +35,10 @@ std::string format_row(const MonitorRow& r);  ///< %.17g for doubles: round-trip
 
 class MonitorWriter {
  public:
-  /// `path` is DIR/monitors.csv; the file is (re)written atomically on flush().
-  explicit MonitorWriter(std::string path);
+  /// The file `name` of `dir` (monitors.csv), (re)written atomically on flush().
+  MonitorWriter(Directory dir, std::string name);
+  /// The same for `path`, its directory opened by name.
+  explicit MonitorWriter(const std::string& path);
   void append(const MonitorRow& r);
   /// Rewrites the whole file atomically if `force` or if at least `min_seconds` passed since
   /// the last write.
@@ -42,7 +46,8 @@ class MonitorWriter {
   const std::vector<MonitorRow>& rows() const { return rows_; }
 
  private:
-  std::string path_;
+  Directory dir_;
+  std::string name_;
   std::vector<MonitorRow> rows_;
   double last_write_ = -1e300;  // steady-clock seconds of the last write
   std::size_t written_ = 0;     // rows_.size() at the last write

@@ -4,15 +4,17 @@
 // link (O_NOFOLLOW), not inherited by child processes (O_CLOEXEC).
 #include <string>
 
+#include "emcontact/output/open_directory.hpp"
+
 namespace emc::output {
 
 struct TempFile {
   int fd = -1;       ///< open for writing, owned by the caller
-  std::string name;  ///< `<path>.tmp.<random>`, in the directory of `path`
+  std::string name;  ///< `<name>.tmp.<random>`, in the directory it was created in
 };
 
-/// Creates a fresh temporary for `path` (mode 0644 less the umask); throws emc::Error naming
-/// `path` if it cannot.
-TempFile create_temp(const std::string& path);
+/// Creates a fresh temporary `<name>.tmp.<random><suffix>` for the file `name` of `dir` (mode
+/// 0644 less the umask); throws emc::Error naming dir.path(name) if it cannot.
+TempFile create_temp(const Directory& dir, const std::string& name, const std::string& suffix = "");
 
 }  // namespace emc::output

@@ -297,8 +297,8 @@ TEST(FacetGrid, MatchesBruteForceWithCurrentFacet) {
   }
 }
 
-// The queries inside a Kokkos parallel_for give the bits of a plain host loop (issue 15: a
-// test per contact kernel): locate with and without a current facet, and for_each_candidate.
+// The queries inside a Kokkos parallel_for give the bits of a plain host loop (a test per
+// contact kernel): locate with and without a current facet, and for_each_candidate.
 TEST(FacetGrid, QueriesInKernelMatchHostLoop) {
   std::vector<std::array<int, 3>> facets;
   std::vector<double> x;

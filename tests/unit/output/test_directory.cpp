@@ -1,5 +1,5 @@
-// The output directory's own files, its lock, safe temporaries and FieldWriter::resume
-// (issue 18: hostile and careless use of the output directory).
+// The output directory's own files, its lock, safe temporaries, FieldWriter::resume and the
+// directory held open (hostile and careless use of the output directory).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -13,6 +13,8 @@
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/directory.hpp"
 #include "emcontact/output/fields.hpp"
+#include "emcontact/output/monitors.hpp"
+#include "emcontact/output/open_directory.hpp"
 #include "emcontact/output/safe_temp.hpp"
 #include "temp_dir.hpp"
 
@@ -75,11 +77,12 @@ TEST(OutputDirectory, LinkAtTheLockIsRefused) {
 
 TEST(SafeTemp, FreshUnpredictableNamesCreatedExclusively) {
   TempDir dir;
-  const TempFile a = create_temp(dir / "f"), b = create_temp(dir / "f");
+  const Directory d(dir.path());
+  const TempFile a = create_temp(d, "f"), b = create_temp(d, "f");
   EXPECT_NE(a.name, b.name);
-  EXPECT_EQ(a.name.rfind(dir / "f.tmp.", 0), 0u);
+  EXPECT_EQ(a.name.rfind("f.tmp.", 0), 0u);
   struct stat st {};
-  ASSERT_EQ(::lstat(a.name.c_str(), &st), 0);
+  ASSERT_EQ(::lstat((dir / a.name).c_str(), &st), 0);
   EXPECT_TRUE(S_ISREG(st.st_mode));
   ::close(a.fd);
   ::close(b.fd);
@@ -127,6 +130,44 @@ TEST(FieldWriterResume, KeepsFramesUpToTheStepAndRemovesLaterOnes) {
   EXPECT_TRUE(std::filesystem::exists(dir / "fields_00000003.h5.notes"));
   w.write(frame(3, 4, 1));
   EXPECT_NE(slurp(dir / "fields.xdmf").find("step_3\""), std::string::npos);
+}
+
+// The directory held open: renamed, with a link to another directory planted at its old name,
+// it still gets every write, listing and removal (the link's target gets none).
+TEST(Directory, WritesFollowTheOpenedDirectoryNotItsName) {
+  TempDir parent, elsewhere;
+  const std::string name = parent / "out", moved = parent / "moved";
+  std::filesystem::create_directory(name);
+  const Directory d(name);
+  const DirectoryLock lock(d);
+  std::filesystem::rename(name, moved);
+  std::filesystem::create_directory_symlink(elsewhere.path(), name);
+  atomic_write(d, "monitors.csv", "rows");
+  MonitorWriter w(d, "monitors.csv");
+  w.flush();
+  const std::vector<double> X = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+  FieldWriter f(d, X, {0, 1, 2, 3}, {0});
+  f.write(frame(0, 4, 1));
+  EXPECT_EQ(owned_files(d), (std::vector<std::string>{"fields.xdmf", "fields_00000000.h5",
+                                                      "mesh.h5", "monitors.csv"}));
+  EXPECT_TRUE(list_dir(elsewhere.path()).empty());
+  EXPECT_EQ(list_dir(moved),
+            (std::vector<std::string>{".emcontact.lock", "fields.xdmf", "fields_00000000.h5",
+                                      "mesh.h5", "monitors.csv"}));
+  remove_owned_files(d);
+  EXPECT_EQ(list_dir(moved), (std::vector<std::string>{".emcontact.lock"}));
+}
+
+TEST(Directory, ALinkAsTheDirectoryIsRefusedNamingIt) {
+  TempDir parent;
+  std::filesystem::create_directory_symlink(parent.path(), parent / "link");
+  try {
+    const Directory d(parent / "link");
+    FAIL() << "a link was opened as the directory";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("link"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("symbolic link"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -209,15 +209,15 @@ TEST(Monitors, FirstThrottledFlushWrites) {
   EXPECT_EQ(read_monitors(dir / "m.csv").size(), 1u);
 }
 
-TEST(Monitors, FlushIntoMissingDirectoryThrowsNamingPath) {
+TEST(Monitors, WriterIntoMissingDirectoryThrowsNamingIt) {
   TempDir dir;
-  const std::string path = dir / "nope/monitors.csv";
-  MonitorWriter w(path);
+  const std::string missing = dir / "nope";
   try {
+    MonitorWriter w(missing + "/monitors.csv");  // the directory is opened here
     w.flush();
     FAIL() << "no exception";
   } catch (const emc::Error& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
   }
 }
 
