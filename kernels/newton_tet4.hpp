@@ -15,11 +15,14 @@ struct ElementState {
 };
 
 /// r[12]: element residual; A (optional): element Newton matrix; scale[12] (optional): sum of
-/// the absolute values of the four terms of g plus a bound of the force that the round-off of
-/// the displacements themselves causes in a stiff element in large rigid motion (V_e (lambda +
-/// 2 mu) |G_A| sum_B |u_B| |G_B|, weighted 1e-3: the floor 100 eps |scale| of the §1 Newton
-/// tolerance then sits above the noise at which the stiff thin disks of three_disks.xml
-/// stagnate; the figures are in perf/README.md "Constants of the code, measured").
+/// the absolute values of the four terms of g plus bounds of the force that the round-off of
+/// the displacements u_{n+1} themselves causes (docs/THEORY.md §1.6): through the stiffness, in
+/// a stiff element in large rigid motion (V_e (lambda + 2 mu) |G_A| sum_B |u_B| |G_B|, weighted
+/// 1e-3: the floor 100 eps |scale| of the §1 Newton tolerance then sits above the noise at which
+/// the stiff thin disks of three_disks.xml stagnate; the figures are in perf/README.md
+/// "Constants of the code, measured"), and through the inertia, (2/dt^2) sum_B M_AB |u_B|
+/// weighted 1e-2 (ten times the noise of rounding u_{n+1}; it outgrows the inertia term's own
+/// size after about 100 steps from the start, as |u| / |u_{n+1} - u_n| grows with the steps).
 KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m, double rho,
                                         const double grav[3], Integrator integ, double dt,
                                         const ElementState& s, double r[12], double (*A)[12],
@@ -39,6 +42,10 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
     ug += un * gnorm[a];
   }
   const double stiff = 1e-3 * Ve * (kernels::fabs(m.lambda) + 2 * m.mu) * ug;
+  double ua[4][3], Mua[4][3];  // M |u_{n+1}|: M's entries are >= 0
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) ua[a][i] = kernels::fabs(s.u1[a][i]);
+  if (scale) mass_times(rho, Ve, massless, ua, Mua);
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) {
       const double fext = rho * Ve * grav[i] / 4.0;
@@ -46,7 +53,8 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
       r[3 * a + i] = c2 * Mdu[a][i] - c1 * MV[a][i] + fint - fext;
       if (scale)
         scale[3 * a + i] = kernels::fabs(c2 * Mdu[a][i]) + kernels::fabs(c1 * MV[a][i]) +
-                           kernels::fabs(fint) + kernels::fabs(fext) + stiff * gnorm[a];
+                           kernels::fabs(fint) + kernels::fabs(fext) + stiff * gnorm[a] +
+                           1e-2 * c2 * Mua[a][i];
     }
   if (A == nullptr) return;
   double M[4][4];

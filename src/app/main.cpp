@@ -5,10 +5,12 @@
 #include <cstdlib>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "emcontact/app/error_exit.hpp"
 #include "emcontact/app/memory.hpp"
 #include "emcontact/app/run.hpp"
+#include "emcontact/app/shared_input.hpp"
 #include "emcontact/app/signals.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/output/hdf5_file.hpp"
@@ -24,6 +26,8 @@ bool first_process() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // a signal from here on ends the run with its one-line message (held until MPI has started)
+  emc::app::install_stop_handlers();
   // --help and --version answer before MPI and Kokkos start
   const std::string early = emc::app::early_option(argc, argv);
   if (!early.empty()) {
@@ -37,9 +41,13 @@ int main(int argc, char** argv) {
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
   const emc::app::ErrorExit error_exit;
-  emc::app::install_sigterm_handler(comm->getRank());
+  emc::app::stop_handlers_ready(comm->getRank());
   try {
-    const auto opt = emc::app::parse_args(argc, argv);
+    // every rank runs rank 0's command line (an MPMD launch may give the ranks others)
+    auto args = emc::app::rank0_arguments(argc, argv, *comm);
+    std::vector<char*> arg_ptrs{argv[0]};
+    for (auto& a : args) arg_ptrs.push_back(a.data());
+    const auto opt = emc::app::parse_args(static_cast<int>(arg_ptrs.size()), arg_ptrs.data());
     if (opt.help) {
       if (root) std::cout << emc::app::usage() << std::endl;
       return 0;

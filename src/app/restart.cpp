@@ -10,6 +10,7 @@
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/checkpoint.hpp"
 #include "emcontact/parallel.hpp"
+#include "emcontact/time/interrupt.hpp"
 
 namespace emc::app {
 
@@ -209,7 +210,8 @@ std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs,
   const std::string path = dir.path("checkpoint.h5");
   const auto& s = sim.state;
   char buf[160];
-  std::snprintf(buf, sizeof buf, "stopped by SIGTERM after step %ld (t = %.6g); ", s.step, s.t);
+  std::snprintf(buf, sizeof buf, "stopped by %s after step %ld (t = %.6g); ",
+                time::signal_name(time::stop_signal()), s.step, s.t);
   if (kept < 0 || kept == s.step) {
     if (kept < 0) save_checkpoint(sim, dofs, dir, "checkpoint.h5");
     return buf + ("continue with --restart " + path);

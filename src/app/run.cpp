@@ -19,6 +19,7 @@
 #include "emcontact/app/restart.hpp"
 #include "emcontact/app/root_gather.hpp"
 #include "emcontact/app/scale_check.hpp"
+#include "emcontact/app/shared_input.hpp"
 #include "emcontact/app/signals.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "emcontact/contact/contact.hpp"
@@ -186,7 +187,7 @@ void settle(Simulation& sim, const Teuchos::ParameterList& time, const std::stri
 
 std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   auto sim = std::make_unique<Simulation>();
-  sim->in = read_input(opt.input, opt.overrides);
+  sim->in = read_shared_input(opt.input, opt.overrides, *comm);  // rank 0's file on every rank
   const auto& P = *sim->in.params;
   auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
   sim->model = fem::build_model(P, std::move(meshes), opt.input);
@@ -218,6 +219,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->stepper =
       std::make_unique<time::Stepper>(P.sublist("Time"), *sim->newton, *sim->elim,
                                       owned_fixed_dofs(disc), sim->contact.get(), sim->state);
+  sim->stepper->check_start(opt.input);  // the first step's scales against the tolerances
   if (opt.restart.empty()) settle(*sim, P.sublist("Time"), opt.input, *comm);
   return sim;
 }
@@ -262,9 +264,11 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   double escale = energy_scale(row0, row0, 0.0);
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.checkpoint_every;
-  sigterm_stops_time_loop();
+  signals_stop_time_loop();
   // the step of DIR/checkpoint.h5 if this run wrote it or restarted from it, else -1
   long kept = same_file(opt.restart, sum.output_dir + "/checkpoint.h5") ? state.step : -1;
+  // rank 0's files decide: whether a stop writes a checkpoint is collective
+  Teuchos::broadcast(*comm, 0, 1, &kept);
   auto stop_on_sigterm = [&]() {
     if (root) w.monitors->flush(true);
     throw RunError(stop_checkpoint(*sim, *w.dofs, output_dir.dir(), kept));
@@ -309,7 +313,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
     progress.finish();
     if (root) w.monitors->flush(true);
     const std::string file = sum.output_dir + "/checkpoint.h5";
-    if (std::string(e.what()).find("stopped by SIGTERM") != std::string::npos) throw;
+    if (std::string(e.what()).find("stopped by SIG") != std::string::npos) throw;
     save_checkpoint(*sim, *w.dofs, output_dir.dir(), "checkpoint.h5");  // to look at or restart
     throw RunError(std::string(e.what()) + "; the last accepted step is in " + file);
   } catch (const Error&) {

@@ -71,9 +71,18 @@ Teuchos::RCP<const ParameterList> valid_parameters(const Schema& schema) {
   return all;
 }
 
+std::string read_input_file(const std::string& file) {
+  return detail::read_xml_text(file);
+}
+
 Input read_input(const std::string& file, const std::vector<std::string>& overrides,
                  const Schema& schema) {
-  auto params = detail::read_xml(file);
+  return read_input_text(file, read_input_file(file), overrides, schema);
+}
+
+Input read_input_text(const std::string& file, const std::string& text,
+                      const std::vector<std::string>& overrides, const Schema& schema) {
+  auto params = detail::parse_xml(file, text);
   for (const auto& o : overrides) detail::apply_override(*params, o, file, schema.sections);
   check_sections(*params, schema, file);
   for (const auto& s : schema.sections) {

@@ -1,5 +1,5 @@
 // Reading the XML input: a strict scan of the values, then Teuchos' reader.
-#include <Teuchos_FileInputSource.hpp>
+#include <Teuchos_StringInputSource.hpp>
 #include <Teuchos_XMLObject.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <algorithm>
@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <sstream>
 
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
@@ -63,11 +64,9 @@ int nesting_depth(std::istream& in) {
   return deepest;
 }
 
-/// Refuses a missing, unreadable or non-regular file, or one nested too deeply.
-void check_readable(const std::string& file) {
-  check_regular_file(file, "input");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) cannot_read(file, std::strerror(errno));
+/// Refuses XML text nested too deeply.
+void check_depth(const std::string& file, const std::string& text) {
+  std::istringstream in(text);
   if (nesting_depth(in) > kMaxDepth)
     cannot_read(file, "elements are nested more than " + std::to_string(kMaxDepth) +
                           " levels deep (the limit; an input needs about 5)");
@@ -138,15 +137,28 @@ void scan_list(const Teuchos::XMLObject& list, const std::string& path, const st
 
 }  // namespace
 
+std::string read_xml_text(const std::string& file) {
+  check_regular_file(file, "input");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) cannot_read(file, std::strerror(errno));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) cannot_read(file, std::strerror(errno));
+  return text;
+}
+
 Teuchos::RCP<Teuchos::ParameterList> read_xml(const std::string& file) {
-  check_readable(file);
+  return parse_xml(file, read_xml_text(file));
+}
+
+Teuchos::RCP<Teuchos::ParameterList> parse_xml(const std::string& file, const std::string& text) {
+  check_depth(file, text);
   try {
-    Teuchos::FileInputSource source(file);
+    Teuchos::StringInputSource source(text);
     const Teuchos::XMLObject xml = source.getObject();
     if (xml.getTag() != "ParameterList")
       cannot_read(file, "the top element is <" + xml.getTag() + ">, not <ParameterList>");
     scan_list(xml, "", file);
-    return Teuchos::getParametersFromXmlFile(file);
+    return Teuchos::getParametersFromXmlString(text);
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {

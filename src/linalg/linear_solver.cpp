@@ -17,6 +17,31 @@ namespace emc::linalg {
 using Teuchos::RCP;
 using Teuchos::rcp;
 
+namespace {
+
+/// A's products, each after asking `stop` (collective: every rank applies A at the same points
+/// of a Krylov iteration, once per iteration): a stop request ends even a solve of many
+/// iterations after the product it arrives in.
+class StopCheckedOperator : public Operator {
+ public:
+  StopCheckedOperator(RCP<const Operator> A, std::function<bool()> stop)
+      : A_(std::move(A)), stop_(std::move(stop)) {}
+  Teuchos::RCP<const Map> getDomainMap() const override { return A_->getDomainMap(); }
+  Teuchos::RCP<const Map> getRangeMap() const override { return A_->getRangeMap(); }
+  bool hasTransposeApply() const override { return A_->hasTransposeApply(); }
+  void apply(const MultiVector& X, MultiVector& Y, Teuchos::ETransp mode, Scalar alpha,
+             Scalar beta) const override {
+    if (stop_()) throw SolveInterrupted{};
+    A_->apply(X, Y, mode, alpha, beta);
+  }
+
+ private:
+  RCP<const Operator> A_;
+  std::function<bool()> stop_;
+};
+
+}  // namespace
+
 // docs/THEORY.md §9: every preconditioner setup starts Chebyshev's power method alike.
 void same_random_start() {
   std::srand(1);
@@ -159,7 +184,9 @@ int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, 
   using Problem = Belos::LinearProblem<double, MultiVector, Operator>;
   auto params = belos_parameters(tol);
   x.putScalar(0.0);
-  auto problem = rcp(new Problem(A, Teuchos::rcpFromRef(x), Teuchos::rcpFromRef(b)));
+  RCP<Operator> op = A;
+  if (stop_) op = rcp(new StopCheckedOperator(A, stop_));
+  auto problem = rcp(new Problem(op, Teuchos::rcpFromRef(x), Teuchos::rcpFromRef(b)));
   if (!prec_.is_null()) problem->setRightPrec(prec_);
   problem->setProblem();
   Belos::SolverFactory<double, MultiVector, Operator> factory;

@@ -48,7 +48,10 @@ void set_linear(Teuchos::ParameterList& pl) {
          "linear solve less accurate than Newton's target costs extra Newton iterations "
          "(perf/README.md).",
          positive_double());
-  pl.set("max iterations", 1000, "Iterations of the iterative solvers.", int_at_least(1));
+  pl.set("max iterations", 1000,
+         "Iterations of the iterative solvers (at most 100000: a solve that long is a "
+         "preconditioner that does not work; a stop signal ends one at its next iteration).",
+         int_range(1, kMaxLinearIterations));
   pl.set("reuse preconditioner", true,
          "Reuse the preconditioner setup across solves where possible.");
   pl.set("factorisation reuse rate", 0.1,
@@ -97,7 +100,8 @@ void set_linear(Teuchos::ParameterList& pl) {
          double_at_least(1.0));
   pl.sublist("Belos", false,
              "Passed to the Belos solver over emcontact's defaults (gmres: Orthogonalization = "
-             "IMGS, Num Blocks = min(max iterations, 300); any Belos parameter).")
+             "IMGS, Num Blocks = min(max iterations, 300); any Belos parameter; Maximum "
+             "Iterations from 1 to 100000).")
       .disableRecursiveValidation();
   pl.sublist(
         "Ifpack2", false,
@@ -105,12 +109,13 @@ void set_linear(Teuchos::ParameterList& pl) {
         "chebyshev: chebyshev: degree = 3; schwarz: overlap 1, ILU(0) inside; any Ifpack2 "
         "parameter of the chosen preconditioner; a name Ifpack2 does not know, or one of another "
         "preconditioner's family (fact: with chebyshev, chebyshev: with ilu), is warned "
-        "about at the start).")
+        "about at the start; chebyshev: degree and relaxation: sweeps at most 100).")
       .disableRecursiveValidation();
   pl.sublist("MueLu", false,
              "Passed to MueLu over emcontact's defaults (plain aggregation, Chebyshev degree 3 "
              "with eigenvalue ratio 7, reuse: type RP, a Schwarz coarse solve on 2+ ranks; any "
-             "MueLu parameter, e.g. multigrid algorithm = sa).")
+             "MueLu parameter, e.g. multigrid algorithm = sa; max levels at most 50, chebyshev: "
+             "degree and relaxation: sweeps at most 100 in any sublist).")
       .disableRecursiveValidation();
 }
 

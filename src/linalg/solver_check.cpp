@@ -40,6 +40,50 @@ RCP<Matrix> test_matrix(const RCP<const Comm>& comm, LO rows) {
   return A;
 }
 
+/// A count in a pass-through sublist that sets how long one preconditioner application, setup
+/// or solve takes, with the largest value allowed (a stop signal is honoured between Krylov
+/// iterations, not inside these).
+struct CountLimit {
+  const char* name;
+  int lo, hi;
+  const char* why;
+};
+
+const CountLimit kCountLimits[] = {
+    {"Maximum Iterations", 1, kMaxLinearIterations, "the Krylov iterations of one solve"},
+    {"chebyshev: degree", std::numeric_limits<int>::min(), 100,
+     "the matrix products of each application of a Chebyshev preconditioner or smoother"},
+    {"relaxation: sweeps", std::numeric_limits<int>::min(), 100,
+     "the sweeps of each application of a relaxation preconditioner or smoother"},
+    {"max levels", std::numeric_limits<int>::min(), 50,
+     "the multigrid levels (each coarsens: 50 cover any mesh)"},
+};
+
+/// Throws InputError naming the parameter if an int entry of `list` (any depth) named in
+/// kCountLimits is out of its range; other types are left to the package.
+void check_counts(const Teuchos::ParameterList& list, const std::string& path,
+                  const std::string& where) {
+  for (auto it = list.begin(); it != list.end(); ++it) {
+    const std::string& name = list.name(it);
+    const auto& entry = list.entry(it);
+    if (entry.isList()) {
+      check_counts(Teuchos::getValue<Teuchos::ParameterList>(entry), path + "/" + name, where);
+      continue;
+    }
+    if (!entry.isType<int>()) continue;
+    const int v = Teuchos::getValue<int>(entry);
+    for (const auto& c : kCountLimits) {
+      if (name != c.name || (v >= c.lo && v <= c.hi)) continue;
+      const bool low = c.lo != std::numeric_limits<int>::min();
+      throw InputError(where + "parameter \"" + path + "/" + name + "\": " + std::to_string(v) +
+                       (v > c.hi ? " is too large" : " is too small") + " for " + c.why +
+                       "; allowed: an integer " +
+                       (low ? "from " + std::to_string(c.lo) + " to " : "up to ") +
+                       std::to_string(c.hi));
+    }
+  }
+}
+
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "\"" : ", \"") + n + "\"";
@@ -92,6 +136,9 @@ RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
 
 void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::string& file) {
   const std::string where = file.empty() ? "" : file + ": ";
+  check_counts(belos_, "Solver/Linear/Belos", where);
+  check_counts(ifpack2_, "Solver/Linear/Ifpack2", where);
+  check_counts(muelu_, "Solver/Linear/MueLu", where);
   RCP<Matrix> A;
   std::vector<std::string> ignored;
   std::string used = preconditioner_name(prec_type_);

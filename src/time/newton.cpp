@@ -32,6 +32,9 @@ Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
   A_ = rcp(new FEMatrix(disc_.graph()));
   g_ = rcp(new Vector(disc_.owned_map()));
   if (solver_.uses_positions()) X_ = disc_.reference_positions();
+  // a stop request ends a long Krylov solve too, not only the Newton iteration after it
+  auto comm = disc_.comm();
+  solver_.set_stop_check([comm] { return stop_requested(*comm); });
 }
 
 // Inexact Newton (docs/THEORY.md §1.7) around the Newton of §1.6 (its convergence test and
@@ -55,6 +58,24 @@ double Newton::linear_tolerance(const std::vector<double>& r, double floor) cons
   const double next = predicted_next(r);
   if (!opt_.adaptive_linear_tolerance || next < 0) return 0;
   return std::min(eta_max, sigma * std::max(next, floor) / r.back());
+}
+
+StartScales Newton::start_scales(const Vector& u0, const Vector& V0, double dt) {
+  const auto map = disc_.owned_map();
+  Vector scale(map), ones(map), mass(map), diag(map);
+  disc_.assemble(u0, V0, u0, dt, A_.get(), *g_, &scale);
+  ones.putScalar(1.0);
+  disc_.apply_mass(ones, mass);  // the consistent mass's row sums
+  A_->getLocalDiagCopy(diag);
+  StartScales s;
+  s.scale = scale.norm2();
+  s.inertia_share = rcp(new Vector(map));
+  auto share = s.inertia_share->getLocalViewHost(Tpetra::Access::OverwriteAll);
+  const auto m = mass.getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto d = diag.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (std::size_t i = 0; i < share.extent(0); ++i)
+    share(i, 0) = d(i, 0) > 0 ? 2.0 / (dt * dt) * m(i, 0) / d(i, 0) : 0.0;
+  return s;
 }
 
 NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
@@ -107,7 +128,7 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
   };
   bool with_matrix = true;
   for (int it = 0;; ++it) {
-    if (stop_requested(*disc_.comm())) throw Interrupted();  // SIGTERM within a long step
+    if (stop_requested(*disc_.comm())) throw Interrupted();  // a signal within a long step
     const fem::AssemblyInfo info = assemble(with_matrix);
     if (!(info.min_detF > 0)) {
       char buf[160];
@@ -135,11 +156,13 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       const double roundoff = hooks_->residual_roundoff();
       Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_SUM, 1, &roundoff, &total);
     }
-    const double floor =
-        std::max(opt_.atol, std::hypot(100 * eps * scale.norm2(), std::sqrt(total)));
+    const double roundoff = std::hypot(100 * eps * scale.norm2(), std::sqrt(total));
+    const double floor = std::max(opt_.atol, roundoff);
     const double target = std::max(rtol * std::max(reference, r0), floor);
     res.floor = floor;
-    if (r <= target && (it > 0 || r <= floor || reference > 0)) {
+    // the start iterate only if it is a solution to round-off: the absolute tolerance applies
+    // to Newton's own iterates (an atol above r_0 froze the bodies: u_{n+1} = u_n, V flipped)
+    if (r <= target && (it > 0 || r <= roundoff || reference > 0)) {
       res.converged = true;
       return res;
     }
@@ -174,6 +197,8 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     } catch (const linalg::LinearSolveError& e) {
       res.failure = e.what();
       return res;
+    } catch (const linalg::SolveInterrupted&) {
+      throw Interrupted();
     }
     elim_.expand(dq, du);
     u1.update(1.0, du, 1.0);

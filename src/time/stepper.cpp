@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "emcontact/error.hpp"
@@ -34,6 +35,53 @@ Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Eli
     }
   } else {
     elim_.set_constraints(fixed_, {}, {});
+  }
+}
+
+void Stepper::check_start(const std::string& file) {
+  const StartScales st = newton_.start_scales(*s_.u, *s_.V, dt_);
+  const auto& disc = newton_.disc();
+  const auto& bodies = disc.model().bodies;
+  // the largest inertia share of each body's dofs, over all ranks
+  std::vector<double> mine(bodies.size(), 0.0), most(bodies.size(), 0.0);
+  const auto share = st.inertia_share->getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto& map = *disc.owned_map();
+  for (std::size_t l = 0; l < share.extent(0); ++l) {
+    const GO node = map.getGlobalElement(static_cast<LO>(l)) / 3;
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+      if (node >= bodies[b].node_begin && node < bodies[b].node_end)
+        mine[b] = std::max(mine[b], share(l, 0));
+  }
+  if (!bodies.empty())
+    Teuchos::reduceAll(*disc.comm(), Teuchos::REDUCE_MAX, static_cast<int>(bodies.size()),
+                       mine.data(), most.data());
+  const double eps = std::numeric_limits<double>::epsilon();
+  char buf[600];
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const auto& body = bodies[b];
+    if (body.rigid || body.tet_end == body.tet_begin || most[b] >= eps) continue;
+    char allowed[120] = "a density whose inertia is not lost (it underflows to 0 here)";
+    if (most[b] > 0)
+      std::snprintf(allowed, sizeof allowed,
+                    "a density of at least %.2g with this young, mesh and dt",
+                    body.density * eps / most[b]);
+    std::snprintf(buf, sizeof buf,
+                  "%s: parameter \"Bodies/%s/Material/density\": %.3g gives the body an inertia "
+                  "(2/dt^2) M below the round-off of its stiffness in the Newton matrix (%.2g of "
+                  "its diagonal at most, at Time/dt = %.3g): its motion would be lost; allowed: "
+                  "%s (docs/THEORY.md §1.6)",
+                  file.c_str(), body.name.c_str(), body.density, most[b], dt_, allowed);
+    throw InputError(buf);
+  }
+  const double atol = newton_.options().atol;
+  if (atol > 0 && st.scale > 0 && atol >= st.scale) {
+    std::snprintf(buf, sizeof buf,
+                  "%s: parameter \"Solver/Newton/absolute tolerance\": %.3g is not below the "
+                  "size of the residual's terms at the first step (%.3g: inertia, internal and "
+                  "external forces, docs/THEORY.md §1.6): it would accept any iterate; allowed: "
+                  "a value well below %.3g, or 0 (the default: the relative tolerance decides)",
+                  file.c_str(), atol, st.scale, st.scale);
+    throw InputError(buf);
   }
 }
 

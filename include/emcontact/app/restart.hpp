@@ -36,8 +36,8 @@ RestartInput read_restart(const Simulation& sim, const std::string& path);
 output::MonitorRow apply_restart(Simulation& sim, const RootGather& dofs, RestartInput& in,
                                  const std::string& path);
 
-/// SIGTERM: a restart from a checkpoint of the regular grid (`Output/checkpoint every`)
-/// continues exactly as the uninterrupted run (both rebuild the preconditioner there); one
+/// SIGTERM, SIGINT, SIGHUP: a restart from a checkpoint of the regular grid (`Output/checkpoint
+/// every`) continues exactly as the uninterrupted run (both rebuild the preconditioner there); one
 /// written at another step would not (the uninterrupted run reuses an older preconditioner).
 /// So the checkpoint of step `kept` (>= 0: checkpoint.h5 of `dir` holds it) stays and the steps
 /// after it are recomputed; with none (`kept` < 0) the current state is written. Returns the

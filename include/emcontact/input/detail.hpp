@@ -61,6 +61,10 @@ void check_list(const Teuchos::ParameterList& user, const Teuchos::ParameterList
 /// Reads the XML file (Teuchos), after a strict scan of its values (numbers, bools, duplicate
 /// names) that Teuchos would silently accept. Throws InputError "<file>: ...".
 Teuchos::RCP<Teuchos::ParameterList> read_xml(const std::string& file);
+/// The same in two parts: the file's bytes (a missing, unreadable or non-regular file refused),
+/// and the XML `text` read from `file` (refused as read_xml refuses it).
+std::string read_xml_text(const std::string& file);
+Teuchos::RCP<Teuchos::ParameterList> parse_xml(const std::string& file, const std::string& text);
 /// Parses `text` as a value of the type of `like`; throws std::invalid_argument.
 Teuchos::any parse_value(const std::string& text, const Teuchos::any& like);
 /// Parses a pass-through value whose type is unknown: int, double, bool, else string.

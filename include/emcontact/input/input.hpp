@@ -41,6 +41,12 @@ struct Input {
 /// its arguments (call on every rank).
 Input read_input(const std::string& file, const std::vector<std::string>& overrides,
                  const Schema& schema);
+/// The same for `text`, the contents of `file` read elsewhere (rank 0's copy on every rank).
+Input read_input_text(const std::string& file, const std::string& text,
+                      const std::vector<std::string>& overrides, const Schema& schema);
+/// The contents of the input file `file`, for read_input_text; throws emc::InputError naming
+/// it if it is missing, not a regular file or unreadable.
+std::string read_input_file(const std::string& file);
 
 /// The whole schema as one list, with one example entry for the user-named sublists
 /// ("Bodies/<body>", "Dirichlet/<condition>", "Contact/<pair>").

@@ -7,6 +7,7 @@
 // Ifpack2, MueLu or Amesos2 (a NaN in the matrix), throws LinearSolveError with the solver's own
 // message on one line, which the time stepper treats as a failed step (dt halved).
 #include <Teuchos_ParameterList.hpp>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,11 @@ class LinearSolveError : public RunError {
  public:
   explicit LinearSolveError(const std::string& what) : RunError(what) {}
 };
+
+/// Thrown out of a Krylov solve when the stop check (LinearSolver::set_stop_check) answers
+/// true. Not a std::exception: Belos prints every std::exception it passes on, and lets this
+/// one through without a word.
+struct SolveInterrupted {};
 
 struct SolveStats {
   int iterations = 0;
@@ -113,6 +119,9 @@ class LinearSolver {
   /// its rigid-body modes from X + u or X (Solver/Linear/multigrid positions).
   void set_configuration(const Vector& X, const Vector& u);
   std::string description() const;
+  /// `stop` is asked (collectively: every rank at the same point) before every product with
+  /// the matrix in a Krylov solve; when it answers true the solve throws SolveInterrupted.
+  void set_stop_check(std::function<bool()> stop) { stop_ = std::move(stop); }
 
  private:
   SolverType type_;
@@ -136,6 +145,7 @@ class LinearSolver {
   long long chebyshev_dofs_ = 0;    ///< auto on one thread: chebyshev from this many
   bool stale_ = false;              ///< prec_ is for an earlier structure: refresh
   Teuchos::RCP<Vector> positions_;  ///< node positions for the next multigrid build
+  std::function<bool()> stop_;      ///< set_stop_check
 
   SolveStats checked_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol);
   int belos_solve(const Teuchos::RCP<Matrix>& A, const Vector& b, Vector& x, double tol,

@@ -14,6 +14,10 @@ enum class NullSpace { rigid_body_modes, translations };
 enum class ModePositions { current, reference };
 enum class MultigridReuse { refresh, rebuild };
 
+/// The most iterations of one Krylov solve (`max iterations`, and the Belos sublist's
+/// `Maximum Iterations`).
+constexpr int kMaxLinearIterations = 100000;
+
 /// Valid parameters of `Solver/Linear` (read by LinearSolver): `type` (gmres | cg | klu2 |
 /// mumps | umfpack), `preconditioner` (auto | ilu | schwarz | muelu | none), `tolerance`, `max
 /// iterations`, `reuse preconditioner`, `factorisation reuse rate`, the multigrid choices,

@@ -1,7 +1,8 @@
 #pragma once
-// A request to stop the time loop (SIGTERM): set from a signal handler, checked collectively
-// between steps and at every Newton iterate, so that a long step (many iterations, step cuts)
-// stops too and every rank stops at the same point.
+// A request to stop the time loop (SIGTERM, SIGINT or SIGHUP): set from a signal handler,
+// checked collectively between steps, at every Newton iterate and at every operator
+// application of a Krylov solve, so that a long step (many iterations, step cuts, a long linear
+// solve) stops too and every rank stops at the same point.
 #include <csignal>
 
 #include "emcontact/error.hpp"
@@ -9,17 +10,25 @@
 
 namespace emc::time {
 
+/// The name of a stop signal: "SIGTERM", "SIGINT", "SIGHUP" (else "a signal").
+const char* signal_name(int signal);
+
+/// The signal every rank agreed on at the last stop_requested() that returned true (SIGTERM
+/// before any).
+int stop_signal();
+
 /// Thrown (on every rank) by a Newton iteration or the time loop when a stop was requested:
 /// the state is still the last accepted step.
 class Interrupted : public Error {
  public:
-  Interrupted() : Error("stopped by SIGTERM") {}
+  Interrupted() : Error(std::string("stopped by ") + signal_name(stop_signal())) {}
 };
 
-/// The flag a signal handler sets (async-signal-safe).
+/// The flag a signal handler sets to the signal's number (async-signal-safe); 0: none.
 volatile std::sig_atomic_t& stop_flag();
 
-/// Collective: true on every rank if any rank's flag is set.
+/// Collective: true on every rank if any rank's flag is set (stop_signal() then names the same
+/// signal on every rank).
 bool stop_requested(const Comm& comm);
 
 }  // namespace emc::time

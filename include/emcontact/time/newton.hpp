@@ -2,10 +2,12 @@
 // Newton on the full residual of eq. 20, reduced by the elimination (docs/THEORY.md §1.6, §3):
 //   (P^T A P + D) dq = -P^T g,  u_{n+1} += P dq,
 // converged when ||P^T g|| <= max(rtol ||P^T g_0||, atol, 100 eps ||scale||), where scale
-// bounds the round-off of g's four terms and g_0 is the solve's start iterate or, for a re-solve
-// of the active-set loop started from the last solution, the largest start residual of the
-// step's solves if that is larger. No step is ever accepted unconverged (a search solve of the
-// active-set loop, docs/THEORY.md §6.9, stops earlier, but the step's last solve is a full one).
+// bounds the round-off of g's four terms and of the iterate's own rounding and g_0 is the
+// solve's start iterate or, for a re-solve of the active-set loop started from the last
+// solution, the largest start residual of the step's solves if that is larger; the start
+// iterate itself only at the round-off floor (atol applies to Newton's own iterates). No step is
+// ever accepted unconverged (a search solve of the active-set loop, docs/THEORY.md §6.9, stops
+// earlier, but the step's last solve is a full one).
 #include <Teuchos_ParameterList.hpp>
 #include <functional>
 #include <string>
@@ -26,6 +28,15 @@ struct NewtonOptions {
   double search_rtol = 0;     ///< the active-set loop's search solves (0: to rtol)
 };
 NewtonOptions newton_options(const Teuchos::ParameterList& newton);
+
+/// docs/THEORY.md §1.6: the sizes at a step's start (u_{n+1} = u_n) that the tolerances are
+/// checked against before the first step.
+struct StartScales {
+  double scale = 0;  ///< ||scale||: the size of the residual's terms
+  /// per owned dof, the inertia of a rigid translation (2/dt^2) sum_j M_ij over the Newton
+  /// matrix's diagonal A_ii = (2/dt^2) M_ii + K_ii (0 where A_ii is not > 0)
+  Teuchos::RCP<Vector> inertia_share;
+};
 
 struct NewtonResult {
   bool converged = false;
@@ -50,6 +61,9 @@ class Newton {
   /// rtol > 0 replaces the relative tolerance (a search solve, docs/THEORY.md §6.9).
   NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
                      double reference = 0, double rtol = 0);
+
+  /// The sizes of the step of dt from (u0, V0) before any iterate (StartScales).
+  StartScales start_scales(const Vector& u0, const Vector& V0, double dt);
 
   /// Constraints that change inside Newton (contact); null: only the fixed elimination.
   void set_hooks(linalg::ConstraintHooks* h) { hooks_ = h; }

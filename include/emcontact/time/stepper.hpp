@@ -86,6 +86,12 @@ class Stepper {
   /// size that grows from dt while the active set holds. The input's initial velocity is put
   /// back at the end; t, the step count and the dissipated energy stay 0.
   SettleReport settle(const SettleOptions& o);
+  /// Before the first step (docs/THEORY.md §1.6): throws InputError naming `file` and the
+  /// parameter if a body's inertia (2/dt^2) M is below the round-off of its stiffness in the
+  /// Newton matrix (its motion would be lost: `Bodies/<body>/Material/density`), or if
+  /// `Solver/Newton/absolute tolerance` is not below the size of the residual's terms (it would
+  /// accept any iterate).
+  void check_start(const std::string& file);
   double nominal_dt() const { return dt_; }
   double end() const { return end_; }
 

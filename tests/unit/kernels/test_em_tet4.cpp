@@ -218,6 +218,36 @@ TEST(NewtonTet4, MassAndJacobian) {
   for (int q = 0; q < 12; ++q) EXPECT_GE(scale[q], std::fabs(r[q]));
 }
 
+// docs/THEORY.md §1.6: far from the reference configuration (|u| = 10^4 times the step's
+// increment) the residual moves by far more than the four terms' round-off when u_{n+1} moves
+// by one ulp (the inertia (2/dt^2) M times eps |u|); Newton's floor 100 eps scale must still
+// cover that change at every dof, which the inertia rounding term of scale makes it do.
+TEST(NewtonTet4, ScaleBoundsTheRoundingOfTheIterate) {
+  Element e = make_element();
+  std::mt19937 rng(11);
+  k::ElementState s;
+  random_u(rng, 0.5, s.V0);
+  const double dt = 1e-6, rho = 7.0, grav[3] = {0, 0, 0}, eps = 2.220446049250313e-16;
+  double du[4][3];
+  random_u(rng, dt, du);
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) {
+      s.u0[a][i] = 1e4 * dt * (1.0 + 0.1 * i) + 1e-3 * a;  // far out, nearly a translation
+      s.u1[a][i] = s.u0[a][i] + du[a][i];
+    }
+  double r[12], scale[12];
+  k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, s, r, nullptr,
+                 scale);
+  k::ElementState t = s;  // u_{n+1} one ulp away, alternating directions
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i)
+      t.u1[a][i] = std::nextafter(s.u1[a][i], (a + i) % 2 ? 1e300 : -1e300);
+  double rt[12], unused[12];
+  k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, t, rt, nullptr,
+                 unused);
+  for (int q = 0; q < 12; ++q) EXPECT_LE(std::fabs(rt[q] - r[q]), 100 * eps * scale[q]) << q;
+}
+
 // Monitors of a rigid translation: kinetic = 1/2 m v^2, L = m v, J = sum x x p.
 TEST(Monitors, RigidTranslation) {
   Element e = make_element();
