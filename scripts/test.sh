@@ -1,8 +1,23 @@
 #!/usr/bin/env bash
-# Fresh machine -> packages, build, and the whole ctest suite (what CI runs).
+# Fresh machine -> packages, build, the default ctest suite, the unit tests under ASan + UBSan,
+# clang-tidy on the changed files (what CI runs; docs/developer-guide.md, "Tests").
+# EMC_SANITIZE=0 or EMC_TIDY=0 leave out those two steps (e.g. on a developer's machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install_deps.sh
-bash scripts/build.sh
+step() {  # NAME CMD...: runs CMD and prints how long it took
+  local t0=$SECONDS
+  echo "== $1"
+  shift
+  "$@"
+  echo "== $((SECONDS - t0)) s"
+}
+step "packages" bash scripts/install_deps.sh
+step "build" bash scripts/build.sh
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-cd build && ctest --output-on-failure -j 2
+step "default suite" bash -c 'cd build && ctest --output-on-failure -j 2'
+if [ "${EMC_SANITIZE:-1}" = 1 ]; then
+  step "unit tests under ASan + UBSan" bash scripts/sanitize.sh --unit
+fi
+if [ "${EMC_TIDY:-1}" = 1 ]; then
+  step "clang-tidy on the changed files" bash scripts/run_clang_tidy.sh --changed
+fi

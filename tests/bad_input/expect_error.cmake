@@ -13,7 +13,7 @@ if(OUTPUT_DIR)
 endif()
 
 execute_process(COMMAND ${CMD} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out
-                TIMEOUT 600)
+                TIMEOUT 280)
 string(REPLACE ";" " " cmd_text "${CMD}")
 message(STATUS "command: ${cmd_text}\nexit: ${rc}\noutput:\n${out}")
 

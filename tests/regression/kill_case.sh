@@ -5,8 +5,8 @@
 set -u
 emc=$1 compare=$2 input=$3 out=$4
 fail() { echo "FAIL: $*"; exit 1; }
-wait_rows() {  # until monitors.csv has at least $2 data rows (60 s at most)
-  for _ in $(seq 600); do
+wait_rows() {  # until monitors.csv has at least $2 data rows (a net of 200 s: ctest allows 300)
+  for _ in $(seq 2000); do
     [ -f "$1/monitors.csv" ] && [ "$(($(wc -l < "$1/monitors.csv") - 1))" -ge "$2" ] && return 0
     sleep 0.1
   done
