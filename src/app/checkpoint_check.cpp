@@ -9,6 +9,7 @@
 #include "emcontact/contact/active.hpp"
 #include "emcontact/contact/detection.hpp"  // entry_rule, kernels::facet_outside
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 
 namespace emc::app {
 namespace {
@@ -102,7 +103,7 @@ void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std:
 /// An integer in [0, n), or refused naming `what`.
 int index_in(double v, std::size_t n, const std::string& what, const std::string& path) {
   if (!(v >= 0 && v < double(n) && v == std::floor(v)))
-    refuse(path, "the checkpoint's active set has " + what + " " + std::to_string(v) +
+    refuse(path, "the checkpoint's active set has " + what + " " + input::echo_number(v) +
                      " (allowed: 0 to " + std::to_string(long(n) - 1) + ")");
   return static_cast<int>(v);
 }

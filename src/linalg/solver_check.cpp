@@ -10,6 +10,7 @@
 #include <regex>
 #include <sstream>
 
+#include "emcontact/input/echo.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 
 namespace emc::linalg {
@@ -40,10 +41,9 @@ RCP<Matrix> test_matrix(const RCP<const Comm>& comm, LO rows) {
   return A;
 }
 
+/// The names, quoted, each cut and at most a few of them (a typo'd list can be huge).
 std::string quoted_list(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "\"" : ", \"") + n + "\"";
-  return s;
+  return input::echo_list(names);
 }
 
 }  // namespace

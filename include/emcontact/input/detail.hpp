@@ -23,8 +23,8 @@ std::string type_name(const Teuchos::any& value);
 /// A value as the user writes it: shortest round-trip doubles, {x, y, z} arrays, quoted strings
 /// if `quote_strings`.
 std::string format_value(const Teuchos::any& value, bool quote_strings = true);
-/// `text` if short, else its first 80 characters, "..." and its length (values echoed in
-/// messages).
+/// input::echo(text): escaped, and if long its first 80 characters, "..." and its length
+/// (values echoed in messages).
 std::string shorten(const std::string& text);
 /// The shortest decimal that reads back as exactly `x`.
 std::string format_double(double x);
