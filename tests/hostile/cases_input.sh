@@ -245,29 +245,26 @@ hostile_muelu_typo_quiet() {
   fi
 }
 
-# a node index of 1e300 in a forged checkpoint was printed with 300 digits
+# a node index of 1e300 in a forged checkpoint was printed with 300 digits (two blocks in
+# contact checkpointed at step 6 with active entries, the first entry's node forged)
 hostile_checkpoint_huge_node_index_short() {
-  emc_good_input in.xml
-  "$EMC" in.xml --set Time/end=0.04 --set "Output/checkpoint every=2" --set Output/every=0 \
-    --set "Bodies/block/Initial/velocity={0, 0, -1}" --output ck >ck.log 2>&1
+  cp "$HERE/../regression/two_blocks.xml" in.xml
+  "$EMC" in.xml --set Output/progress=false --set Time/end=0.06 --set "Output/checkpoint every=6" \
+    --output ck >ck.log 2>&1
   HERE="$HERE" /usr/bin/python3 - ck/checkpoint.h5 <<'EOF'
 import os, sys
 import h5py, numpy as np
 sys.path.insert(0, os.environ['HERE'])
 from checkpoint_state import checksum
 with h5py.File(sys.argv[1], 'r+') as f:
-    active = np.array([1e300, 0, 0, 0.3, 0.3])  # one entry: node, pair, facet, xi, eta
-    for name, data in (('active', active), ('normal_force', np.array([1.0]))):
-        del f[name]
-        f.create_dataset(name, data=data, dtype='<f8')
-    state = f['state'][:] if 'state' in f else np.zeros(0)
-    if len(state):
-        del f['state']
-        state = np.zeros(5)
-        f.create_dataset('state', data=state, dtype='<f8')
-    f.attrs.modify('checksum', np.uint64(checksum(f, state)))
+    active = f['active'][:]
+    assert len(active) > 0, 'no active entry'
+    active[0] = 1e300
+    del f['active']
+    f.create_dataset('active', data=active, dtype='<f8')
+    f.attrs.modify('checksum', np.uint64(checksum(f, f['state'][:])))
 EOF
-  expect_exit 1 "$EMC" in.xml --set Time/end=0.06 --restart ck/checkpoint.h5
+  expect_exit 1 "$EMC" in.xml --set Time/end=0.08 --restart ck/checkpoint.h5
   expect_err 'node 1e\+300'
   expect_err_bytes 400
 }
