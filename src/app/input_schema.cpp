@@ -195,18 +195,34 @@ std::string parameters_of_type(const std::string& type) {
   return names;
 }
 
+/// The `Mesh/type` of body `body` in the input file itself ("box" if it gives none).
+std::string type_in_file(const input::Given& given, const std::string& body) {
+  const auto& bodies = given.file.sublist("Bodies");
+  if (!bodies.isSublist(body) || !bodies.sublist(body).isSublist("Mesh")) return "box";
+  const auto& mesh = bodies.sublist(body).sublist("Mesh");
+  return mesh.isType<std::string>("type") ? mesh.get<std::string>("type") : "box";
+}
+
 /// A body's `Mesh` gives only parameters its `type` reads: a `file` with type `box`, or the
 /// radii of a shell on a cylinder, would be silently ignored (entries the user did not give
-/// are the schema's defaults, marked as such).
-void check_mesh_parameters(const ParameterList& params, const std::string& file) {
+/// are the schema's defaults, marked as such). A parameter of the file's own type is not
+/// refused when an override changed the type (`--set Bodies/b/Mesh/type=plane` on a box).
+void check_mesh_parameters(const ParameterList& params, const input::Given& given,
+                           const std::string& file) {
   const auto& bodies = params.sublist("Bodies");
   for (auto b = bodies.begin(); b != bodies.end(); ++b) {
     const auto& mesh = bodies.sublist(bodies.name(b)).sublist("Mesh");
     const std::string& type = mesh.get<std::string>("type");
+    const std::string path = "Bodies/" + bodies.name(b) + "/Mesh/";
+    const bool retyped = given.overridden(path + "type");
     for (auto it = mesh.begin(); it != mesh.end(); ++it) {
       const std::vector<std::string> types = emc::mesh::types_reading(mesh.name(it));
-      if (mesh.entry(it).isDefault() || types.empty() ||
-          std::find(types.begin(), types.end(), type) != types.end())
+      const auto reads = [&](const std::string& t) {
+        return std::find(types.begin(), types.end(), t) != types.end();
+      };
+      if (mesh.entry(it).isDefault() || types.empty() || reads(type)) continue;
+      if (retyped && !given.overridden(path + mesh.name(it)) &&
+          reads(type_in_file(given, bodies.name(b))))
         continue;
       std::string readers;
       for (const auto& t : types) readers += (readers.empty() ? "\"" : ", \"") + t + "\"";
@@ -290,12 +306,12 @@ void check_belos(const ParameterList& params, const std::string& file) {
 }
 
 /// The checks across sections, in this order.
-void check(const ParameterList& params, const std::string& file) {
+void check(const ParameterList& params, const input::Given& given, const std::string& file) {
   check_bodies(params, file);
   check_end_time(params, file);
   check_dirichlet(params, file);
   check_rigid_bodies(params, file);
-  check_mesh_parameters(params, file);
+  check_mesh_parameters(params, given, file);
   check_contact(params, file);
   check_belos(params, file);
 }

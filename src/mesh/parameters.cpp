@@ -36,7 +36,8 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
       "Shape of the body: a built-in Gmsh mesh ('box', 'cylinder', 'hollow cylinder', "
       "'spherical shell'), a rigid surface ('plane', 'rectangle': triangles only, fixed in "
       "space) or a Gmsh .msh 4.1 file ('file'). Each type reads only the parameters named with "
-      "it below ('size' with every type but 'file'); a parameter of another type is refused. "
+      "it below ('size' with every type but 'file'); a parameter of another type is refused (not "
+      "one the input file gives for its own type when --set changes the type). "
       "A built-in volume must give tetrahedra: every extent (side, height, radius, wall "
       "thickness) at least 1e-6 of its largest and about 'size' or more",
       Teuchos::tuple<std::string>("box", "cylinder", "hollow cylinder", "spherical shell", "plane",

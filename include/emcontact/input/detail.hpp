@@ -65,6 +65,8 @@ Teuchos::RCP<Teuchos::ParameterList> read_xml(const std::string& file);
 Teuchos::any parse_value(const std::string& text, const Teuchos::any& like);
 /// Parses a pass-through value whose type is unknown: int, double, bool, else string.
 Teuchos::any guess_value(const std::string& text);
+/// The path "Section/Sub/name" an override "Section/Sub/name=value" sets.
+std::string override_path(const std::string& override_text);
 /// Applies one "Section/Sub/name=value" override to the raw input `params` (whose sections
 /// are `sections`).
 void apply_override(Teuchos::ParameterList& params, const std::string& override_text,

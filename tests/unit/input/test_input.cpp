@@ -495,11 +495,17 @@ TEST_F(InputTest, MeshParameterOfAnotherTypeRefused) {
                   "read it (it is a parameter of type \"file\")",
                   "allowed: the parameters of type \"box\": type, size, lower corner, upper "
                   "corner; or a type that reads it"});
-  // the box's corners once the type is a file; a shell's radii on a cylinder; in the file too
-  expect_message(
-      error(Xml{}, {"Bodies/ball/Mesh/type=file"}),
-      {"parameter \"Bodies/ball/Mesh/upper corner\"", "type \"file\" does not read it",
-       "types \"box\", \"rectangle\"", "the parameters of type \"file\": type, file, volume"});
+  // the box's corners with type file in the file itself; a shell's radii on a cylinder
+  Xml file;
+  file.mesh = std::string(R"(<Parameter name="type" type="string" value="file"/>)") +
+              R"X(<Parameter name="upper corner" type="Array(double)" value="{1, 1, 1}"/>)X";
+  expect_message(error(file), {"parameter \"Bodies/ball/Mesh/upper corner\"",
+                               "type \"file\" does not read it", "types \"box\", \"rectangle\"",
+                               "the parameters of type \"file\": type, file, volume"});
+  // --set changing the type leaves the file's parameters of its own type alone, not its own
+  EXPECT_EQ(error(Xml{}, {"Bodies/ball/Mesh/type=file", "Bodies/ball/Mesh/file=a.msh"}), "");
+  expect_message(error(Xml{}, {"Bodies/ball/Mesh/type=file", "Bodies/ball/Mesh/size=0.02"}),
+                 {"parameter \"Bodies/ball/Mesh/size\": given, but type \"file\""});
   Xml cyl;
   cyl.mesh = R"(<Parameter name="type" type="string" value="cylinder"/>
         <Parameter name="inner radius" type="double" value="0.05"/>)";
