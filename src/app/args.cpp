@@ -1,12 +1,43 @@
 #include <Trilinos_version.h>
 
 #include <Kokkos_Core.hpp>
+#include <algorithm>
+#include <climits>
 #include <cstring>
 
 #include "emcontact/app/run.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 
 namespace emc::app {
+namespace {
+
+/// Kokkos' option for the number of threads in the linked Kokkos: --kokkos-num-threads from
+/// Kokkos 3.7 on, --kokkos-threads before (Kokkos 3.4 refuses the newer spelling).
+#if KOKKOS_VERSION >= 30700
+constexpr const char* kKokkosThreadsOption = "--kokkos-num-threads";
+#else
+constexpr const char* kKokkosThreadsOption = "--kokkos-threads";
+#endif
+
+/// Refuses a path no file system accepts (a name longer than NAME_MAX, 255 bytes, or the
+/// whole longer than PATH_MAX, 4096): it could only fail later, echoed in full.
+void check_path_length(const std::string& flag, const std::string& path) {
+  std::size_t longest = 0, start = 0;
+  while (start <= path.size()) {
+    const std::size_t slash = std::min(path.find('/', start), path.size());
+    longest = std::max(longest, slash - start);
+    start = slash + 1;
+  }
+  if (longest > NAME_MAX || path.size() >= PATH_MAX)
+    throw InputError(flag + " \"" + input::echo(path) + "\": " +
+                     (longest > NAME_MAX ? "a name in it has " + std::to_string(longest) + " bytes"
+                                         : "it has " + std::to_string(path.size()) + " bytes") +
+                     "; allowed: names of at most " + std::to_string(NAME_MAX) +
+                     " bytes, paths shorter than " + std::to_string(PATH_MAX));
+}
+
+}  // namespace
 
 std::string usage() {
   return "usage: emcontact INPUT.xml [--set Section/Sub/name=value ...] [--output DIR]\n"
@@ -22,8 +53,8 @@ std::string usage() {
          "  --version   print emcontact's, Trilinos' and Kokkos' versions and Kokkos' backend\n"
          "  --help, -h  this text\n"
          "One run at a time per DIR (DIR/.emcontact.lock). Parameters: inputs/README.md.\n"
-         "Kokkos' own options (e.g. --kokkos-num-threads=N) pass through: --kokkos-help lists "
-         "them.";
+         "Kokkos' own options (e.g. " +
+         std::string(kKokkosThreadsOption) + "=N) pass through: --kokkos-help lists them.";
 }
 
 std::string version() {
@@ -73,16 +104,18 @@ Options parse_args(int argc, char** argv) {
       o.overrides.push_back(value("--set"));
     } else if (a == "--output" || a.rfind("--output=", 0) == 0) {
       o.output_dir = value("--output");
+      check_path_length("--output", o.output_dir);
     } else if (a == "--overwrite") {
       o.overwrite = true;
     } else if (a == "--restart" || a.rfind("--restart=", 0) == 0) {
       o.restart = value("--restart");
     } else if (!a.empty() && a[0] == '-') {
-      throw InputError("unknown option \"" + a + "\"\n" + usage());
+      throw InputError("unknown option \"" + input::echo(a) + "\"\n" + usage());
     } else if (o.input.empty()) {
       o.input = a;
     } else {
-      throw InputError("more than one input file (\"" + o.input + "\", \"" + a + "\")\n" + usage());
+      throw InputError("more than one input file (\"" + input::echo(o.input) + "\", \"" +
+                       input::echo(a) + "\")\n" + usage());
     }
   }
   if (o.input.empty() && !o.help) throw InputError("no input file given\n" + usage());

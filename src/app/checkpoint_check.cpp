@@ -9,6 +9,7 @@
 #include "emcontact/contact/active.hpp"
 #include "emcontact/contact/detection.hpp"  // entry_rule, kernels::facet_outside
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 
 namespace emc::app {
 namespace {
@@ -57,7 +58,7 @@ std::string number(double v) {
 void check_scalars(const output::Checkpoint& c, const std::string& path) {
   auto need = [&](bool ok, const char* name, double v, const char* allowed) {
     if (!ok)
-      refuse(path, std::string("the checkpoint's ") + name + " = " + std::to_string(v) +
+      refuse(path, std::string("the checkpoint's ") + name + " = " + input::echo_number(v) +
                        " is not " + allowed);
   };
   need(std::isfinite(c.t) && c.t >= 0, "t", c.t, "a finite time >= 0");
@@ -102,7 +103,7 @@ void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std:
 /// An integer in [0, n), or refused naming `what`.
 int index_in(double v, std::size_t n, const std::string& what, const std::string& path) {
   if (!(v >= 0 && v < double(n) && v == std::floor(v)))
-    refuse(path, "the checkpoint's active set has " + what + " " + std::to_string(v) +
+    refuse(path, "the checkpoint's active set has " + what + " " + input::echo_number(v) +
                      " (allowed: 0 to " + std::to_string(long(n) - 1) + ")");
   return static_cast<int>(v);
 }
@@ -118,15 +119,15 @@ void check_state(const double* p, const contact::Pair& pair, int slave, const st
                        pair.name + " has " + what);
   };
   const bool coulomb = pair.kind == contact::Kind::coulomb;
-  need(p[0] == 0 || p[0] == 1, "slip = " + std::to_string(p[0]) + " (allowed: 0 or 1)");
-  need(p[4] == 0 || p[4] == 1, "off = " + std::to_string(p[4]) + " (allowed: 0 or 1)");
+  need(p[0] == 0 || p[0] == 1, "slip = " + input::echo_number(p[0]) + " (allowed: 0 or 1)");
+  need(p[4] == 0 || p[4] == 1, "off = " + input::echo_number(p[4]) + " (allowed: 0 or 1)");
   need(p[0] == 0 || coulomb, "slip = 1 in a pair that is not coulomb");
   need(p[4] == 0 || (coulomb && p[0] == 0), "off = 1 but is not a sticking coulomb entry");
   const double norm = std::sqrt(p[1] * p[1] + p[2] * p[2] + p[3] * p[3]);
   need(std::isfinite(norm) && norm <= 1 + 1e-12,
-       "a slip direction of length " + std::to_string(norm) + " (allowed: at most 1)");
+       "a slip direction of length " + input::echo_number(norm) + " (allowed: at most 1)");
   need(p[0] == 0 || norm >= 1 - 1e-12,
-       "slip = 1 with a direction of length " + std::to_string(norm) + " (allowed: 1)");
+       "slip = 1 with a direction of length " + input::echo_number(norm) + " (allowed: 1)");
 }
 
 /// docs/THEORY.md §2.4, §5.5: an entry lies on its facet within the edge extension of

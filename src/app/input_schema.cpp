@@ -183,6 +183,58 @@ void check_rigid_bodies(const ParameterList& params, const std::string& file) {
   }
 }
 
+/// The `Mesh` parameters that a body's `Mesh/type` reads, comma separated.
+std::string parameters_of_type(const std::string& type) {
+  std::string names = "type";
+  const auto schema = emc::mesh::valid_mesh_parameters();
+  for (auto it = schema->begin(); it != schema->end(); ++it) {
+    const auto types = emc::mesh::types_reading(schema->name(it));
+    if (std::find(types.begin(), types.end(), type) != types.end())
+      names += ", " + schema->name(it);
+  }
+  return names;
+}
+
+/// The `Mesh/type` of body `body` in the input file itself ("box" if it gives none).
+std::string type_in_file(const input::Given& given, const std::string& body) {
+  const auto& bodies = given.file.sublist("Bodies");
+  if (!bodies.isSublist(body) || !bodies.sublist(body).isSublist("Mesh")) return "box";
+  const auto& mesh = bodies.sublist(body).sublist("Mesh");
+  return mesh.isType<std::string>("type") ? mesh.get<std::string>("type") : "box";
+}
+
+/// A body's `Mesh` gives only parameters its `type` reads: a `file` with type `box`, or the
+/// radii of a shell on a cylinder, would be silently ignored (entries the user did not give
+/// are the schema's defaults, marked as such). A parameter of the file's own type is not
+/// refused when an override changed the type (`--set Bodies/b/Mesh/type=plane` on a box).
+void check_mesh_parameters(const ParameterList& params, const input::Given& given,
+                           const std::string& file) {
+  const auto& bodies = params.sublist("Bodies");
+  for (auto b = bodies.begin(); b != bodies.end(); ++b) {
+    const auto& mesh = bodies.sublist(bodies.name(b)).sublist("Mesh");
+    const std::string& type = mesh.get<std::string>("type");
+    const std::string path = "Bodies/" + bodies.name(b) + "/Mesh/";
+    const bool retyped = given.overridden(path + "type");
+    for (auto it = mesh.begin(); it != mesh.end(); ++it) {
+      const std::vector<std::string> types = emc::mesh::types_reading(mesh.name(it));
+      const auto reads = [&](const std::string& t) {
+        return std::find(types.begin(), types.end(), t) != types.end();
+      };
+      if (mesh.entry(it).isDefault() || types.empty() || reads(type)) continue;
+      if (retyped && !given.overridden(path + mesh.name(it)) &&
+          reads(type_in_file(given, bodies.name(b))))
+        continue;
+      std::string readers;
+      for (const auto& t : types) readers += (readers.empty() ? "\"" : ", \"") + t + "\"";
+      detail::fail(file, "Bodies/" + bodies.name(b) + "/Mesh/" + mesh.name(it),
+                   {"given, but type \"" + type + "\" does not read it (it is a parameter of " +
+                        (types.size() == 1 ? "type " : "types ") + readers + ")",
+                    "the parameters of type \"" + type + "\": " + parameters_of_type(type) +
+                        "; or a type that reads it"});
+    }
+  }
+}
+
 /// Checks `Contact/<pair>/<role>` ("body" or "body/surface" naming an existing body); returns
 /// the body name.
 std::string contact_body(const ParameterList& bodies, const ParameterList& pair,
@@ -230,13 +282,38 @@ void check_contact(const ParameterList& params, const std::string& file) {
   });
 }
 
+/// The Belos parameters that replace emcontact's own limits must be as valid as those:
+/// Belos itself accepts `Maximum Iterations = -1` (and stops after one iteration, a failed
+/// solve whose message would not name it) and any `Convergence Tolerance`.
+void check_belos(const ParameterList& params, const std::string& file) {
+  const auto& belos = params.sublist("Solver").sublist("Linear").sublist("Belos");
+  const std::string path = "Solver/Linear/Belos/";
+  for (const char* name : {"Maximum Iterations", "Num Blocks"}) {
+    if (!belos.isType<int>(name) || belos.get<int>(name) >= 1) continue;
+    detail::fail(file, path + name,
+                 {"value " + std::to_string(belos.get<int>(name)) + " is out of range",
+                  "an int >= 1 (or leave it out: Solver/Linear/max iterations)"});
+  }
+  const char* tol = "Convergence Tolerance";  // "2" on the command line reads as an int
+  const bool given = belos.isType<double>(tol) || belos.isType<int>(tol);
+  const double t = belos.isType<int>(tol) ? belos.get<int>(tol)
+                   : given                ? belos.get<double>(tol)
+                                          : 0.5;
+  if (!(t > 0 && t < 1))
+    detail::fail(file, path + tol,
+                 {"value " + detail::format_double(t) + " is out of range",
+                  "a double > 0 and < 1 (or leave it out: Solver/Linear/tolerance)"});
+}
+
 /// The checks across sections, in this order.
-void check(const ParameterList& params, const std::string& file) {
+void check(const ParameterList& params, const input::Given& given, const std::string& file) {
   check_bodies(params, file);
   check_end_time(params, file);
   check_dirichlet(params, file);
   check_rigid_bodies(params, file);
+  check_mesh_parameters(params, given, file);
   check_contact(params, file);
+  check_belos(params, file);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "emcontact/app/error_exit.hpp"
 #include "emcontact/app/memory.hpp"
 #include "emcontact/app/run.hpp"
+#include "emcontact/app/scale_check.hpp"
 #include "emcontact/app/shared_input.hpp"
 #include "emcontact/app/signals.hpp"
 #include "emcontact/error.hpp"
@@ -73,8 +74,15 @@ int main(int argc, char** argv) {
     Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, false);
     return 0;
   } catch (const emc::Error& e) {
-    return error_exit.fail(e.what(), 1);
+    // a solver's out-of-memory, reported as a failed step
+    if (emc::app::is_out_of_memory(e))
+      return error_exit.fail(emc::app::out_of_memory_message(e), 1);
+    return error_exit.fail(emc::app::with_step_failure_hint(e.what()), 1);
   } catch (const std::exception& e) {
+    // out of memory (std::bad_alloc, or Kokkos' allocation failure) is a model too large for
+    // the machine: one line naming its size, exit 1
+    if (emc::app::is_out_of_memory(e))
+      return error_exit.fail(emc::app::out_of_memory_message(e), 1);
     return error_exit.fail(e.what(), 2);
   }
 }

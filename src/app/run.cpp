@@ -198,6 +198,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->contact = std::make_unique<contact::Contact>(disc, std::move(pairs));
   if (opt.restart.empty()) sim->contact->check_initial_penetration(opt.input);
   check_contact_scales(sim->model, sim->contact->pairs(), opt.input);
+  note_parameter_scales(sim->model, P);  // named if a step cannot be solved
   sim->elim = std::make_unique<linalg::Elimination>(disc.owned_map());
   sim->solver = std::make_unique<linalg::LinearSolver>(P.sublist("Solver").sublist("Linear"), comm,
                                                        opt.input);

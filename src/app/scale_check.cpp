@@ -5,8 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/detail.hpp"
+#include "emcontact/input/echo.hpp"
 
 namespace emc::app {
 namespace {
@@ -38,7 +41,108 @@ const double* geometry_node(const fem::Model& m, int n) {
   return n < m.num_nodes() ? &m.X[3 * n] : &m.rigid_X[3 * (n - m.num_nodes())];
 }
 
+/// The hints noted by note_parameter_scales.
+std::string g_hints;
+
+/// A parameter's value as the user writes it.
+std::string value(double x) {
+  return input::detail::format_double(x);
+}
+
+std::string vec(const std::array<double, 3>& v) {
+  return "{" + value(v[0]) + ", " + value(v[1]) + ", " + value(v[2]) + "}";
+}
+
+double length(const std::array<double, 3>& v) {
+  return std::hypot(v[0], v[1], v[2]);
+}
+
+/// The median longest edge of body b's tets and its largest distance from its centroid.
+std::pair<double, double> body_sizes(const fem::Body& b) {
+  const auto& m = b.mesh;
+  std::vector<double> edges(m.num_tets());
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const int* t = &m.tets[4 * static_cast<std::size_t>(e)];
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        edges[e] = std::max(edges[e], std::hypot(m.X[3 * t[i]] - m.X[3 * t[j]],
+                                                 m.X[3 * t[i] + 1] - m.X[3 * t[j] + 1],
+                                                 m.X[3 * t[i] + 2] - m.X[3 * t[j] + 2]));
+  }
+  if (edges.empty()) return {0.0, 0.0};
+  std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
+  std::array<double, 3> c{};
+  for (int n = 0; n < m.num_nodes(); ++n)
+    for (int k = 0; k < 3; ++k) c[k] += m.X[3 * n + k] / m.num_nodes();
+  double r = 0.0;
+  for (int n = 0; n < m.num_nodes(); ++n)
+    r = std::max(r, std::hypot(m.X[3 * n] - c[0], m.X[3 * n + 1] - c[1], m.X[3 * n + 2] - c[2]));
+  return {edges[edges.size() / 2], r};
+}
+
+/// The hints of one deformable body (see note_parameter_scales).
+void body_hints(const fem::Body& b, const fem::Model& model, double dt, double dt_min, double end,
+                std::vector<std::string>& hints) {
+  const auto [h, radius] = body_sizes(b);
+  if (!(h > 0)) return;
+  const std::string at = "Bodies/" + input::echo(b.name) + "/";
+  const auto add = [&](const std::string& hint) { hints.push_back(hint); };
+  const double c = std::sqrt(b.young / b.density), waves = c * dt / h;
+  if (waves > 1e3)
+    add("Time/dt = " + value(dt) + " with " + at + "Material/young = " + value(b.young) +
+        " and density = " + value(b.density) + ": the elastic wave, sqrt(young / density) = " +
+        number(c) + " m/s, crosses c dt / h = " + number(waves) + " elements (h = " + number(h) +
+        ") per step, and the Newton matrix's condition grows as its square (a "
+        "smaller Time/dt, or a direct solver: Solver/Linear/type)");
+  if (b.poisson > 0.499)
+    add(at + "Material/poisson = " + value(b.poisson) +
+        ": nearly incompressible (lambda / mu = " + number(2 * b.poisson / (1 - 2 * b.poisson)) +
+        "), an ill-conditioned Newton matrix (a direct solver copes: Solver/Linear/type)");
+  const double omega = length(b.angular_velocity);
+  if (omega * dt_min > 0.5)
+    add(at + "Initial/angular velocity = " + vec(b.angular_velocity) + " turns the body by " +
+        number(omega * dt_min) + " rad even in the smallest step (dt = " + number(dt_min) +
+        " after Time/max step cuts), and Newton needs well below 1 rad per step (a smaller "
+        "Time/dt)");
+  const double stress = b.density * omega * omega * radius * radius;
+  if (stress > b.young)
+    add(at + "Initial/angular velocity = " + vec(b.angular_velocity) +
+        ": its centrifugal stress, density omega^2 r^2 = " + number(stress) + ", is " +
+        number(stress / b.young) + " times young: it tears the body apart");
+  const double flight = length(b.velocity) * end + 0.5 * length(model.gravity) * end * end;
+  if (flight * std::numeric_limits<double>::epsilon() > 1e-3 * h)
+    add(at + "Initial/velocity = " + vec(b.velocity) +
+        " and Loads/gravity = " + vec(model.gravity) + " move the body up to " + number(flight) +
+        " by Time/end: its positions lose more than 1e-3 of an element (h = " + number(h) +
+        ") to round-off");
+}
+
 }  // namespace
+
+void note_parameter_scales(const fem::Model& model, const Teuchos::ParameterList& params) {
+  const auto& time = params.sublist("Time");
+  const double dt = time.get<double>("dt"), end = time.get<double>("end");
+  const double dt_min = std::ldexp(dt, -time.get<int>("max step cuts"));
+  std::vector<std::string> hints;
+  for (const auto& b : model.bodies)
+    if (!b.rigid) body_hints(b, model, dt, dt_min, end, hints);
+  g_hints.clear();
+  // the first two, and how many more (one line stays readable)
+  for (std::size_t k = 0; k < hints.size() && k < 2; ++k)
+    g_hints += (k ? "; " : "; parameters that may keep the step from being solved: ") + hints[k];
+  if (hints.size() > 2) g_hints += "; and " + std::to_string(hints.size() - 2) + " more";
+}
+
+std::string step_failure_hint() {
+  return g_hints;
+}
+
+std::string with_step_failure_hint(const std::string& message) {
+  if (g_hints.empty() || message.find("could not be solved") == std::string::npos) return message;
+  const auto kept = message.find("; the last accepted step is in ");
+  if (kept == std::string::npos) return message + g_hints;
+  return message.substr(0, kept) + g_hints + message.substr(kept);
+}
 
 void check_contact_scales(const fem::Model& model, const std::vector<contact::Pair>& pairs,
                           const std::string& file) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 #include "kernels/facet.hpp"
 
 namespace emc::contact {
@@ -45,10 +46,10 @@ std::vector<std::array<int, 3>> surface_triangles(const fem::Body& b, const std:
   }
   auto it = b.mesh.surfaces.find(name);
   if (it == b.mesh.surfaces.end()) {
-    std::string names;
-    for (const auto& [n, t] : b.mesh.surfaces) names += (names.empty() ? "" : ", ") + n;
-    throw InputError(where + ": body \"" + b.name + "\" has no surface \"" + name +
-                     "\"; its surfaces: " + names);
+    std::vector<std::string> names;
+    for (const auto& [n, t] : b.mesh.surfaces) names.push_back(n);
+    throw InputError(where + ": body \"" + input::echo(b.name) + "\" has no surface \"" +
+                     input::echo(name) + "\"; its surfaces: " + input::echo_list(names, 10));
   }
   return it->second;
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "emcontact/input/detail.hpp"
+#include "emcontact/input/echo.hpp"
 
 namespace emc::input::detail {
 namespace {
@@ -172,9 +173,7 @@ std::string type_name(const any& value) {
 }
 
 std::string shorten(const std::string& text) {
-  constexpr std::size_t kMax = 80;  // a refused value is echoed, not dumped
-  if (text.size() <= kMax) return text;
-  return text.substr(0, kMax) + "... (" + std::to_string(text.size()) + " characters)";
+  return echo(text);  // a refused value is echoed, not dumped
 }
 
 namespace {

@@ -57,6 +57,13 @@ std::string directory_of(const std::string& file) {
 
 }  // namespace
 
+bool Given::overridden(const std::string& path) const {
+  for (const auto& p : override_paths)
+    if (p == path || (p.size() > path.size() && p.compare(0, path.size() + 1, path + "/") == 0))
+      return true;
+  return false;
+}
+
 Teuchos::RCP<const ParameterList> valid_parameters(const Schema& schema) {
   auto all = Teuchos::rcp(new ParameterList("emcontact"));
   for (const auto& s : schema.sections) {
@@ -83,7 +90,12 @@ Input read_input(const std::string& file, const std::vector<std::string>& overri
 Input read_input_text(const std::string& file, const std::string& text,
                       const std::vector<std::string>& overrides, const Schema& schema) {
   auto params = detail::parse_xml(file, text);
-  for (const auto& o : overrides) detail::apply_override(*params, o, file, schema.sections);
+  const Teuchos::ParameterList in_file = *params;
+  Given given{in_file, {}};
+  for (const auto& o : overrides) {
+    detail::apply_override(*params, o, file, schema.sections);
+    given.override_paths.push_back(detail::override_path(o));
+  }
   check_sections(*params, schema, file);
   for (const auto& s : schema.sections) {
     auto& section = params->sublist(s.name);
@@ -93,7 +105,7 @@ Input read_input_text(const std::string& file, const std::string& text,
       validate_and_fill(section, *s.schema, s.name, file);
     }
   }
-  if (schema.check) schema.check(*params, file);
+  if (schema.check) schema.check(*params, given, file);
   return Input{params, file, directory_of(file)};
 }
 

@@ -230,6 +230,10 @@ any guess_value(const std::string& text) {
   return any(text);
 }
 
+std::string override_path(const std::string& text) {
+  return trim(text.substr(0, text.find('=')));  // as apply_override reads it
+}
+
 void apply_override(ParameterList& params, const std::string& text, const std::string& file,
                     const std::vector<Section>& sections) {
   const auto eq = text.find('=');

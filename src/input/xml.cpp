@@ -27,8 +27,7 @@ constexpr int kMaxDepth = 64;
 
 /// The deepest element nesting of the XML text (comments, processing instructions,
 /// declarations, CDATA and quoted attribute values skipped), or kMaxDepth + 1 once beyond.
-int nesting_depth(std::istream& in) {
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+int nesting_depth(const std::string& text) {
   int depth = 0, deepest = 0;
   for (std::size_t i = text.find('<'); i != std::string::npos; i = text.find('<', i)) {
     auto skip_past = [&](const char* end) {
@@ -64,10 +63,36 @@ int nesting_depth(std::istream& in) {
   return deepest;
 }
 
+/// The encoding a byte order mark at the start of `text` announces, or "" if none other than
+/// UTF-8's.
+std::string other_encoding(const std::string& text) {
+  const auto starts = [&](const char* bom, std::size_t n) {
+    return text.compare(0, n, bom, n) == 0;
+  };
+  if (starts("\x00\x00\xfe\xff", 4) || starts("\xff\xfe\x00\x00", 4)) return "UTF-32";
+  if (starts("\xfe\xff", 2) || starts("\xff\xfe", 2)) return "UTF-16";
+  return "";
+}
+
+/// The text of the input as UTF-8 without its byte order mark (which Teuchos' parser refuses).
+/// Refuses UTF-16 and UTF-32 (a byte order mark, or NUL bytes, which UTF-8 text never holds).
+std::string utf8_text(std::string text, const std::string& file) {
+  const std::string how = "; it must be UTF-8 (or ASCII) text: convert it, e.g. iconv -f ";
+  const std::string encoding = other_encoding(text);
+  if (!encoding.empty())
+    cannot_read(file,
+                "it is " + encoding + " text (a byte order mark)" + how + encoding + " -t UTF-8");
+  const auto nul = text.find('\0');
+  if (nul != std::string::npos)
+    cannot_read(file, "it holds a NUL byte (byte " + std::to_string(nul) +
+                          "): not text, or UTF-16" + how + "UTF-16 -t UTF-8");
+  if (text.compare(0, 3, "\xef\xbb\xbf") == 0) text.erase(0, 3);  // UTF-8's byte order mark
+  return text;
+}
+
 /// Refuses XML text nested too deeply.
 void check_depth(const std::string& file, const std::string& text) {
-  std::istringstream in(text);
-  if (nesting_depth(in) > kMaxDepth)
+  if (nesting_depth(text) > kMaxDepth)
     cannot_read(file, "elements are nested more than " + std::to_string(kMaxDepth) +
                           " levels deep (the limit; an input needs about 5)");
 }
@@ -150,13 +175,14 @@ Teuchos::RCP<Teuchos::ParameterList> read_xml(const std::string& file) {
   return parse_xml(file, read_xml_text(file));
 }
 
-Teuchos::RCP<Teuchos::ParameterList> parse_xml(const std::string& file, const std::string& text) {
+Teuchos::RCP<Teuchos::ParameterList> parse_xml(const std::string& file, const std::string& raw) {
+  const std::string text = utf8_text(raw, file);
   check_depth(file, text);
   try {
     Teuchos::StringInputSource source(text);
     const Teuchos::XMLObject xml = source.getObject();
     if (xml.getTag() != "ParameterList")
-      cannot_read(file, "the top element is <" + xml.getTag() + ">, not <ParameterList>");
+      cannot_read(file, "the top element is <" + shorten(xml.getTag()) + ">, not <ParameterList>");
     scan_list(xml, "", file);
     return Teuchos::getParametersFromXmlString(text);
   } catch (const InputError&) {

@@ -1,6 +1,9 @@
 // Schema of `Solver/Linear`.
 #include "emcontact/linalg/parameters.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include "emcontact/input/validators.hpp"
 
 namespace emc::linalg {
@@ -46,8 +49,9 @@ void set_linear(Teuchos::ParameterList& pl) {
          "Solver/Newton/adaptive linear tolerance = false, else the tightest one (the solves "
          "that decide Newton's last iterate). Keep it below Newton's relative tolerance: a "
          "linear solve less accurate than Newton's target costs extra Newton iterations "
-         "(perf/README.md).",
-         positive_double());
+         "(perf/README.md). Below 1: the zero correction already meets a relative residual "
+         "of 1, and Newton would not move.",
+         double_range(std::numeric_limits<double>::min(), std::nextafter(1.0, 0.0)));
   pl.set("max iterations", 1000,
          "Iterations of the iterative solvers (at most 100000: a solve that long is a "
          "preconditioner that does not work; a stop signal ends one at its next iteration).",

@@ -2,6 +2,7 @@
 
 #ifdef EMC_HAVE_MUELU
 #include <MueLu_CreateTpetraPreconditioner.hpp>
+#include <MueLu_VerboseObject.hpp>
 #endif
 #include <stdexcept>
 
@@ -52,6 +53,9 @@ Teuchos::RCP<Operator> make_muelu(const Teuchos::RCP<Matrix>& A, const Teuchos::
   if (!coordinates.is_null()) p.sublist("user data").set("Coordinates", coordinates);
   Teuchos::RCP<Operator> op = A;
   same_random_start();
+  // before it reads `verbosity`, MueLu prints at its default level (high) the edit distance of
+  // every valid name to an unknown one (190 lines on stdout): quiet unless the user asked
+  if (!user.isParameter("verbosity")) MueLu::VerboseObject::SetDefaultVerbLevel(MueLu::None);
   return MueLu::CreateTpetraPreconditioner(op, p);
 #endif
 }

@@ -10,6 +10,7 @@
 #include <regex>
 #include <sstream>
 
+#include "emcontact/input/echo.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 
 namespace emc::linalg {
@@ -84,10 +85,9 @@ void check_counts(const Teuchos::ParameterList& list, const std::string& path,
   }
 }
 
+/// The names, quoted, each cut and at most a few of them (a typo'd list can be huge).
 std::string quoted_list(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "\"" : ", \"") + n + "\"";
-  return s;
+  return input::echo_list(names);
 }
 
 }  // namespace

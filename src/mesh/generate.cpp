@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 #include "emcontact/input/files.hpp"
 #include "emcontact/vec3.hpp"
 #include "internal.hpp"
@@ -25,16 +26,20 @@ namespace {
 
 using Tri = std::array<int, 3>;
 
-/// Upper bound on the estimated tet count of a built-in mesh (a too small `size` would
-/// otherwise exhaust the memory inside Gmsh).
-constexpr double kMaxEstimatedTets = 2e7;
+/// Every extent of a built-in volume (a box's side, a cylinder's height and radius, a wall's
+/// thickness) must be at least this fraction of its largest one: OpenCASCADE merges points
+/// closer than its tolerance of 1e-7 (of a body of size about 1), and fails on such a sliver
+/// without a reason ("OpenCASCADE exception").
+constexpr double kMinExtentRatio = 1e-6;
 
-/// A built-in shape: how to create it in Gmsh, how to name its boundary triangles and its
-/// exact volume (for the element count estimate).
+/// A built-in shape: how to create it in Gmsh, how to name its boundary triangles, its exact
+/// volume (for the element count estimate) and its description in messages.
 struct Shape {
   std::function<void()> add_to_gmsh;  ///< adds exactly one OCC volume to the current model
   std::function<std::string(const std::array<Vec3, 3>&)> surface_of;  ///< "" if unknown
   double volume = 0.0;
+  std::string description;  ///< "spherical shell of inner radius 0.05, outer radius 0.1"
+  double thinnest = 0.0;    ///< the smallest extent: side, height, radius or wall thickness
 };
 
 std::string str(double v) {
@@ -115,7 +120,19 @@ Vec3 unit_axis(const Teuchos::ParameterList& p, const std::string& where) {
   return scaled(1.0 / len, axis);
 }
 
-/// `inner radius` and `outer radius`, with inner < outer.
+/// Refuses `extent` (what it is: "the wall (outer radius - inner radius)") below
+/// kMinExtentRatio of `largest`, naming `parameter`.
+void check_extent(double extent, double largest, const std::string& parameter,
+                  const std::string& what, const std::string& where) {
+  if (extent >= kMinExtentRatio * largest) return;
+  throw InputError(where + ": parameter '" + parameter + "': " + what + " is " + str(extent) +
+                   ", below 1e-6 of the body's largest extent " + str(largest) +
+                   ": Gmsh (OpenCASCADE) cannot mesh such a sliver; allowed: every extent at "
+                   "least 1e-6 of the largest (and about 'size' or more, to get elements)");
+}
+
+/// `inner radius` and `outer radius`, with inner < outer and a wall of at least
+/// kMinExtentRatio of the outer radius.
 std::pair<double, double> radii_params(const Teuchos::ParameterList& p, const std::string& where) {
   const double ri = positive_param(p, "inner radius", where);
   const double ro = positive_param(p, "outer radius", where);
@@ -123,6 +140,7 @@ std::pair<double, double> radii_params(const Teuchos::ParameterList& p, const st
     throw InputError(where + ": parameter 'inner radius' (" + str(ri) +
                      ") must be smaller than 'outer radius' (" + str(ro) + ")");
   }
+  check_extent(ro - ri, ro, "inner radius", "the wall (outer radius - inner radius)", where);
   return {ri, ro};
 }
 
@@ -149,6 +167,14 @@ Shape box_shape(const Teuchos::ParameterList& p, const std::string& where) {
     }
     s.volume *= hi[d] - lo[d];
   }
+  const Vec3 side = sub(hi, lo);
+  const double largest = std::max({side[0], side[1], side[2]});
+  for (int d = 0; d < 3; ++d)
+    check_extent(side[d], largest, "upper corner",
+                 std::string("the side along ") + axes[d] + " ('upper corner' - 'lower corner')",
+                 where);
+  s.description = "box from " + str(lo) + " to " + str(hi);
+  s.thinnest = std::min({side[0], side[1], side[2]});
   s.add_to_gmsh = [lo, hi] {
     gmsh::model::occ::addBox(lo[0], lo[1], lo[2], hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
   };
@@ -177,8 +203,16 @@ Shape cylinder_shape(const Teuchos::ParameterList& p, const std::string& where, 
   } else {
     ro = positive_param(p, "radius", where);
   }
+  if (!hollow)
+    check_extent(std::min(h, ro), std::max(h, ro), h < ro ? "height" : "radius",
+                 h < ro ? "the height" : "the radius", where);
+  if (hollow) check_extent(h, std::max(h, ro), "height", "the height", where);
   Shape s;
   s.volume = M_PI * (ro * ro - ri * ri) * h;
+  s.description = hollow ? "hollow cylinder of height " + str(h) + ", inner radius " + str(ri) +
+                               ", outer radius " + str(ro)
+                         : "cylinder of height " + str(h) + ", radius " + str(ro);
+  s.thinnest = std::min(h, hollow ? ro - ri : ro);
   s.add_to_gmsh = [c, a, h, ri, ro, hollow] {
     const int outer =
         gmsh::model::occ::addCylinder(c[0], c[1], c[2], h * a[0], h * a[1], h * a[2], ro);
@@ -213,6 +247,8 @@ Shape shell_shape(const Teuchos::ParameterList& p, const std::string& where) {
   const auto [ri, ro] = radii_params(p, where);
   Shape s;
   s.volume = 4.0 / 3.0 * M_PI * (ro * ro * ro - ri * ri * ri);
+  s.description = "spherical shell of inner radius " + str(ri) + ", outer radius " + str(ro);
+  s.thinnest = ro - ri;
   s.add_to_gmsh = [c, ri = ri, ro = ro] {
     const int outer = gmsh::model::occ::addSphere(c[0], c[1], c[2], ro);
     const int inner = gmsh::model::occ::addSphere(c[0], c[1], c[2], ri);
@@ -320,28 +356,44 @@ void name_surfaces(BodyMesh& m, const Shape& shape, const std::string& where) {
   }
 }
 
+/// About the number of tets of edge `size` that fill `shape` (8.5 regular tets per size^3).
+double tets_estimate(const Shape& shape, double size) {
+  return 8.5 * shape.volume / (size * size * size);
+}
+
 /// The tet mesh of `shape` with target edge length `size`.
 BodyMesh generate(const Shape& shape, double size, const std::string& where) {
-  const double estimate = 8.5 * shape.volume / (size * size * size);  // regular tets of edge size
-  if (estimate > kMaxEstimatedTets) {
+  const double estimate = tets_estimate(shape, size);
+  if (estimate > kMaxTets) {
     throw InputError(where + ": parameter 'size' (" + str(size) + ") is too small for this " +
-                     "body: about " + str(estimate) + " tetrahedra, the limit is " +
-                     str(kMaxEstimatedTets));
+                     "body: about " + str(estimate) + " tetrahedra, the limit is " + str(kMaxTets));
   }
   detail::GmshSession session;
   BodyMesh m;
-  detail::with_gmsh(where, "Gmsh failed to mesh the body", [&] {
-    gmsh::model::add("body");
-    shape.add_to_gmsh();
-    gmsh::model::occ::synchronize();
-    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
-    gmsh::option::setNumber("Mesh.MeshSizeMax", size);
-    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
-    gmsh::option::setNumber("Mesh.Optimize", 1);
-    gmsh::model::mesh::generate(3);
-    std::vector<std::size_t> used_tags;
-    m = detail::body_from_gmsh(detail::gmsh_tets({}, where), used_tags);
-  });
+  // a wall thinner than the elements is the usual cause of a failure (Gmsh's own reason is
+  // about its triangulation, e.g. "PLC Error: A segment and a facet intersect")
+  const std::string thin =
+      shape.thinnest < size ? " (its thinnest extent, " + str(shape.thinnest) + ", is below 'size')"
+                            : "";
+  detail::with_gmsh(
+      where, "Gmsh failed to mesh the " + shape.description + " with size " + str(size) + thin,
+      [&] {
+        gmsh::model::add("body");
+        shape.add_to_gmsh();
+        gmsh::model::occ::synchronize();
+        gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
+        gmsh::option::setNumber("Mesh.MeshSizeMax", size);
+        gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+        gmsh::option::setNumber("Mesh.Optimize", 1);
+        gmsh::model::mesh::generate(3);
+        std::vector<std::size_t> used_tags;
+        m = detail::body_from_gmsh(detail::gmsh_tets({}, where), used_tags);
+      });
+  if (m.num_tets() == 0)
+    throw InputError(where + ": Gmsh made no tetrahedra of the " + shape.description +
+                     " with size " + str(size) + thin +
+                     "; allowed: a body whose every extent (side, height, wall thickness) is "
+                     "about 'size' or more");
   orient_positive(m);
   check_tets(m, where + " (generated mesh)");
   name_surfaces(m, shape, where);
@@ -361,7 +413,8 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
   const std::string resolved = path.lexically_normal().string();
   std::error_code ec;
   if (!std::filesystem::exists(resolved, ec))
-    throw InputError(where + ": parameter 'file': mesh file '" + resolved + "' does not exist");
+    throw InputError(where + ": parameter 'file': mesh file '" + input::echo(resolved) +
+                     "' does not exist");
   try {  // a directory, FIFO or device: say which
     input::check_regular_file(resolved, "mesh file");
   } catch (const InputError& e) {
@@ -372,28 +425,50 @@ BodyMesh mesh_from_file(const Teuchos::ParameterList& p, const std::string& inpu
 
 }  // namespace
 
+namespace {
+
+/// The shape of a volume type (box, cylinder, hollow cylinder, spherical shell), its parameters
+/// checked; false for the other types.
+bool volume_shape(MeshType type, const Teuchos::ParameterList& p, const std::string& where,
+                  Shape& shape) {
+  switch (type) {
+    case MeshType::box:
+      shape = box_shape(p, where);
+      return true;
+    case MeshType::cylinder:
+      shape = cylinder_shape(p, where, false);
+      return true;
+    case MeshType::hollow_cylinder:
+      shape = cylinder_shape(p, where, true);
+      return true;
+    case MeshType::spherical_shell:
+      shape = shell_shape(p, where);
+      return true;
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+double estimated_tets(const Teuchos::ParameterList& mesh_params, const std::string& where) {
+  const Teuchos::ParameterList p = validated(mesh_params, where);
+  const MeshType type = Teuchos::getIntegralValue<MeshType>(p, "type");
+  Shape shape;
+  if (type == MeshType::file || !volume_shape(type, p, where, shape)) return 0.0;
+  return tets_estimate(shape, positive_param(p, "size", where));
+}
+
 BodyMesh build_mesh(const Teuchos::ParameterList& mesh_params, const std::string& input_dir,
                     const std::string& where) {
   const Teuchos::ParameterList p = validated(mesh_params, where);
   const MeshType type = Teuchos::getIntegralValue<MeshType>(p, "type");
   if (type == MeshType::file) return mesh_from_file(p, input_dir, where);
   const double size = positive_param(p, "size", where);
-  switch (type) {
-    case MeshType::box:
-      return generate(box_shape(p, where), size, where);
-    case MeshType::cylinder:
-      return generate(cylinder_shape(p, where, false), size, where);
-    case MeshType::hollow_cylinder:
-      return generate(cylinder_shape(p, where, true), size, where);
-    case MeshType::spherical_shell:
-      return generate(shell_shape(p, where), size, where);
-    case MeshType::plane:
-      return plane_mesh(p, size, where);
-    case MeshType::rectangle:
-      return rectangle_mesh(p, size, where);
-    case MeshType::file:  // above
-      break;
-  }
+  Shape shape;
+  if (volume_shape(type, p, where, shape)) return generate(shape, size, where);
+  if (type == MeshType::plane) return plane_mesh(p, size, where);
+  if (type == MeshType::rectangle) return rectangle_mesh(p, size, where);
   throw InputError(where + ": parameter 'type': not a shape");
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 #include "msh_parse_state.hpp"
 
 namespace emc::mesh::msh {
@@ -141,7 +142,8 @@ void skip_section(Scanner& s, const std::string& name) {
   for (std::size_t at = s.position();; ++at) {
     at = text.find(marker, at);
     if (at == std::string::npos) {
-      s.fail("section $" + name + " has no " + marker + " line (truncated file?)");
+      s.fail("section $" + input::echo(name) + " has no " + input::echo(marker) +
+             " line (truncated file?)");
     }
     const std::size_t end = at + marker.size();
     const bool line_start = at == 0 || text[at - 1] == '\n';

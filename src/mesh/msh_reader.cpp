@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 #include "emcontact/mesh/generate.hpp"
 #include "emcontact/vec3.hpp"
 #include "internal.hpp"
@@ -28,12 +29,13 @@ constexpr int kTetrahedron = 4;  ///< Gmsh's 4-node tetrahedron
 std::string read_file(const std::string& file, const std::string& where) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) {
-    throw InputError(where + ": mesh file '" + file + "' does not exist or is not a regular file");
+    throw InputError(where + ": mesh file '" + input::echo(file) +
+                     "' does not exist or is not a regular file");
   }
   std::ifstream in(file, std::ios::binary);
   std::ostringstream text;
   text << in.rdbuf();
-  if (!in) throw InputError(where + ": cannot read the mesh file '" + file + "'");
+  if (!in) throw InputError(where + ": cannot read the mesh file '" + input::echo(file) + "'");
   return text.str();
 }
 
@@ -237,11 +239,10 @@ detail::GmshTets all_triangles(const MshData& d, const std::string& where) {
   return elements_of(d, 2, kTriangle, surfaces);
 }
 
-/// Refuses a triangle of zero (or below 1e-12 of the mean) area: its normal is undefined.
+/// Refuses a triangle of zero (or at most 1e-12 of the median) area: its normal is undefined.
 void check_triangles(const BodyMesh& m, const std::vector<Tri>& tris,
                      const std::vector<std::size_t>& element_tags, const std::string& where) {
   std::vector<double> areas(tris.size());
-  double mean = 0.0;
   for (std::size_t e = 0; e < tris.size(); ++e) {
     Vec3 a, b;
     for (int d = 0; d < 3; ++d) {
@@ -249,14 +250,18 @@ void check_triangles(const BodyMesh& m, const std::vector<Tri>& tris,
       b[d] = m.X[3 * tris[e][2] + d] - m.X[3 * tris[e][0] + d];
     }
     areas[e] = 0.5 * norm(cross(a, b));
-    mean += areas[e] / static_cast<double>(tris.size());
   }
+  std::vector<double> sorted = areas;
+  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  const double median = sorted.empty() ? 0.0 : *mid;
   for (std::size_t e = 0; e < tris.size(); ++e) {
-    if (areas[e] > 1e-12 * mean) continue;  // also catches NaN
+    if (areas[e] > 1e-12 * median && std::isfinite(areas[e])) continue;  // also catches NaN
     std::ostringstream msg;
     msg << where << ": element " << element_tags[e] << " is a degenerate triangle (area "
-        << areas[e] << ", mean " << mean
-        << "); every triangle of a rigid surface must have an area above 1e-12 of the mean";
+        << areas[e] << ", median " << median
+        << "); every triangle of a rigid surface must have a finite area above 1e-12 of the "
+           "median";
     throw InputError(msg.str());
   }
 }
@@ -274,6 +279,7 @@ BodyMesh rigid_surface(const MshData& d, const std::string& where) {
   for (std::size_t e = 0; e < all.size(); ++e) {
     for (int k = 0; k < 3; ++k) all[e][k] = detail::local_node(used_tags, t.node_tags[3 * e + k]);
   }
+  check_nodes(m, where, used_tags);
   check_triangles(m, all, t.element_tags, where);
   read_surfaces(d, m, used_tags, false, where);
   m.surfaces["surface"] = std::move(all);  // always all triangles (replaces a group "surface")
@@ -300,7 +306,9 @@ BodyMesh mesh_of(const MshData& d, const std::string& volume, const std::string&
   }
   std::vector<std::size_t> used_tags;
   BodyMesh m = detail::body_from_tags(tets, d.node_tags, d.coords, used_tags);
+  check_nodes(m, where, used_tags);
   check_tets(m, where, tets.element_tags);  // a user mesh is never silently fixed
+  check_distinct_tets(m, where, tets.element_tags);
   read_surfaces(d, m, used_tags, true, where);
   return m;
 }
@@ -309,7 +317,7 @@ BodyMesh mesh_of(const MshData& d, const std::string& volume, const std::string&
 
 BodyMesh read_msh(const std::string& file, const std::string& volume, const std::string& where) {
   const std::string text = read_file(file, where);
-  const std::string file_where = where + ": '" + file + "'";
+  const std::string file_where = where + ": '" + input::echo(file) + "'";
   return mesh_of(msh::parse_msh(text, file_where), volume, file_where);
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 
 namespace emc::mesh::msh {
 namespace {
@@ -22,6 +23,10 @@ const char* after_plus(const std::string& t) {
 }
 
 }  // namespace
+
+void Scanner::set_section(const std::string& section) {
+  section_ = input::echo(section);
+}
 
 bool Scanner::at_end() {
   skip_space();

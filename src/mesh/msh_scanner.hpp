@@ -20,8 +20,9 @@ class Scanner {
   bool binary() const { return binary_; }
   /// Errors of a binary file give byte offsets (its lines mean nothing), else line numbers.
   void set_binary_file(bool binary_file) { binary_file_ = binary_file; }
-  /// The section named in errors ("" before the first one).
-  void set_section(const std::string& section) { section_ = section; }
+  /// The section named in errors ("" before the first one), as input::echo shows it (a
+  /// corrupt header may hold any byte).
+  void set_section(const std::string& section);
 
   /// True if only whitespace is left.
   bool at_end();

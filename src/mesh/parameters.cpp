@@ -4,6 +4,7 @@
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <limits>
+#include <map>
 
 #include "emcontact/mesh/generate.hpp"
 
@@ -34,7 +35,11 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
       "type", "box",
       "Shape of the body: a built-in Gmsh mesh ('box', 'cylinder', 'hollow cylinder', "
       "'spherical shell'), a rigid surface ('plane', 'rectangle': triangles only, fixed in "
-      "space) or a Gmsh .msh 4.1 file ('file')",
+      "space) or a Gmsh .msh 4.1 file ('file'). Each type reads only the parameters named with "
+      "it below ('size' with every type but 'file'); a parameter of another type is refused (not "
+      "one the input file gives for its own type when --set changes the type). "
+      "A built-in volume must give tetrahedra: every extent (side, height, radius, wall "
+      "thickness) at least 1e-6 of its largest and about 'size' or more",
       Teuchos::tuple<std::string>("box", "cylinder", "hollow cylinder", "spherical shell", "plane",
                                   "rectangle", "file"),
       Teuchos::tuple<std::string>(
@@ -94,6 +99,26 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters() {
   set_positive(*pl, "outer radius", 0.1,
                "Outer radius ('hollow cylinder', 'spherical shell'), above 'inner radius'");
   return pl;
+}
+
+std::vector<std::string> types_reading(const std::string& parameter) {
+  const std::vector<std::string> generated = {
+      "box", "cylinder", "hollow cylinder", "spherical shell", "plane", "rectangle"};
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"file", {"file"}},
+      {"volume", {"file"}},
+      {"size", generated},
+      {"lower corner", {"box", "rectangle"}},
+      {"upper corner", {"box", "rectangle"}},
+      {"center", {"cylinder", "hollow cylinder", "spherical shell", "plane"}},
+      {"axis", {"cylinder", "hollow cylinder", "plane", "rectangle"}},
+      {"half width", {"plane"}},
+      {"height", {"cylinder", "hollow cylinder"}},
+      {"radius", {"cylinder"}},
+      {"inner radius", {"hollow cylinder", "spherical shell"}},
+      {"outer radius", {"hollow cylinder", "spherical shell"}}};
+  const auto it = table.find(parameter);
+  return it == table.end() ? std::vector<std::string>() : it->second;
 }
 
 bool is_rigid_surface_type(MeshType type) {

@@ -1,6 +1,10 @@
 #pragma once
-// The C library's allocator for a long implicit run: freed memory is kept for the next
-// allocation of the same size instead of being returned to the system and faulted in again.
+// The memory of a run: the C library's allocator settings for a long implicit run (freed memory
+// is kept for the next allocation of the same size instead of being returned to the system and
+// faulted in again); the memory a model needs, checked against what this process can get before
+// the meshes are built; and the one-line message of a run that ran out of memory anyway.
+#include <exception>
+#include <string>
 
 namespace emc::app {
 
@@ -10,5 +14,42 @@ namespace emc::app {
 /// afresh (zeroed pages, one fault per page) and trim the heap after each free. Returns whether
 /// the settings were made. Call before anything allocates much (before MPI starts).
 bool keep_freed_memory();
+
+/// What a run allocates once its meshes are built (the matrices, vectors and preconditioner
+/// of the default iterative solvers, the solver packages' set-up): a base and bytes per
+/// tetrahedron shared by the ranks, fitted to the tumbling box on one rank at 6042, 44736 and
+/// 205753 tets. Mapped: its address space (VmSize) grew from then on by 131, 226 and 577 MB
+/// (115 MB + 2290 bytes per tet; GMRES's Krylov basis of 300 vectors is mapped whole and
+/// touched only as far as the iterations go). Resident: its resident size grew by 18, 49 and
+/// 236 MB (11 MB + 1090 bytes per tet). Rounded up.
+constexpr double kMappedBaseBytes = 120e6;
+constexpr double kMappedBytesPerTet = 2300;
+constexpr double kResidentBaseBytes = 20e6;
+constexpr double kResidentBytesPerTet = 1200;
+/// Bytes per tetrahedron every rank holds whatever the rank count (the replicated model: node
+/// coordinates, tets, their body, partition and colouring).
+constexpr double kReplicatedBytesPerTet = 100;
+
+/// Bytes one of `ranks` ranks needs beyond its start-up for a model of `tets` tetrahedra:
+/// resident memory, or if `mapped` address space.
+double bytes_needed(double tets, int ranks, bool mapped);
+
+/// Throws InputError "<what>, which would need about X GiB per rank ... more than the Y GiB
+/// this rank can still get (<source>); allowed: a coarser mesh ..." if the resident bytes
+/// needed exceed /proc/meminfo's MemAvailable shared by the `ranks_on_node` ranks of this
+/// machine, or the mapped bytes needed exceed RLIMIT_AS (ulimit -v) less this process's mapped
+/// size (VmSize). `what` names the model ("file: Bodies: the meshes would hold about 737847
+/// tetrahedra in all (box: 737847)").
+void check_memory(double tets, int ranks, int ranks_on_node, const std::string& what);
+
+/// Keeps the model's size (and the memory available now) for out_of_memory_message.
+void note_model_size(long long tets, long long nodes, int ranks, int ranks_on_node);
+
+/// True for std::bad_alloc and Kokkos' allocation failure (a std::runtime_error in Kokkos 3.4).
+bool is_out_of_memory(const std::exception& e);
+
+/// One line for a run that ran out of memory: the model noted (tets, nodes, ranks), the memory
+/// it needs and what was available, and what to change.
+std::string out_of_memory_message(const std::exception& e);
 
 }  // namespace emc::app

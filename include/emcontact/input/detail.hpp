@@ -23,8 +23,8 @@ std::string type_name(const Teuchos::any& value);
 /// A value as the user writes it: shortest round-trip doubles, {x, y, z} arrays, quoted strings
 /// if `quote_strings`.
 std::string format_value(const Teuchos::any& value, bool quote_strings = true);
-/// `text` if short, else its first 80 characters, "..." and its length (values echoed in
-/// messages).
+/// input::echo(text): escaped, and if long its first 80 characters, "..." and its length
+/// (values echoed in messages).
 std::string shorten(const std::string& text);
 /// The shortest decimal that reads back as exactly `x`.
 std::string format_double(double x);
@@ -69,6 +69,8 @@ Teuchos::RCP<Teuchos::ParameterList> parse_xml(const std::string& file, const st
 Teuchos::any parse_value(const std::string& text, const Teuchos::any& like);
 /// Parses a pass-through value whose type is unknown: int, double, bool, else string.
 Teuchos::any guess_value(const std::string& text);
+/// The path "Section/Sub/name" an override "Section/Sub/name=value" sets.
+std::string override_path(const std::string& override_text);
 /// Applies one "Section/Sub/name=value" override to the raw input `params` (whose sections
 /// are `sections`).
 void apply_override(Teuchos::ParameterList& params, const std::string& override_text,

@@ -1,7 +1,8 @@
 #pragma once
 // Files named by the user (the input, a mesh, a checkpoint) must be regular files: a FIFO
 // blocks the reader forever, a directory or a device (/dev/zero) is never what was meant.
-// Header only: the mesh and output modules use it without linking the input library.
+// Header only (its messages echo the path with input::echo, of the input library, which the
+// mesh and output modules that use it link).
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 
 namespace emc::input {
 namespace detail {
@@ -25,11 +27,11 @@ inline std::string kind_of(mode_t m) {
 
 }  // namespace detail
 
-/// Throws InputError "<path>: cannot read the <what>: <reason>" unless `path` is a regular
-/// file this process can read (reasons: no such file, it is a directory / FIFO / device / not
-/// a regular file, or the open error).
+/// Throws InputError "<path>: cannot read the <what>: <reason>" (the path echoed) unless `path` is
+/// a regular file this process can read (reasons: no such file, it is a directory / FIFO / device /
+/// not a regular file, or the open error).
 inline void check_regular_file(const std::string& path, const std::string& what) {
-  const std::string head = path + ": cannot read the " + what + ": ";
+  const std::string head = echo(path) + ": cannot read the " + what + ": ";
   if (path.empty()) throw InputError("cannot read the " + what + ": the file name is empty");
   struct stat st {};
   if (stat(path.c_str(), &st) != 0)

@@ -20,12 +20,25 @@ struct Section {
   bool named() const { return !placeholder.empty(); }
 };
 
+/// Where the user gave the parameters the checks across parameters see: the input file's own
+/// list (before the overrides and the defaults) and the paths the overrides set
+/// ("Bodies/box/Mesh/file").
+struct Given {
+  const Teuchos::ParameterList& file;
+  std::vector<std::string> override_paths;
+  /// True if an override set the parameter or sublist at `path` (or one inside it).
+  bool overridden(const std::string& path) const;
+};
+
 /// The whole input: its sections in documentation order, and the checks across parameters
 /// (e.g. a contact pair names existing bodies) run once every section is validated and filled
-/// in; they throw emc::InputError (see detail::fail).
+/// in (`params`; `given` says where each value came from); they throw emc::InputError (see
+/// detail::fail).
 struct Schema {
   std::vector<Section> sections;
-  std::function<void(const Teuchos::ParameterList& params, const std::string& file)> check;
+  std::function<void(const Teuchos::ParameterList& params, const Given& given,
+                     const std::string& file)>
+      check;
 };
 
 struct Input {

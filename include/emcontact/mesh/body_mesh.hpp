@@ -31,15 +31,47 @@ inline bool is_rigid(const BodyMesh& m) {
 /// Signed reference volume of tet e (docs/THEORY.md §1.1: V_e > 0 for a valid element).
 double tet_volume(const BodyMesh& m, int e);
 
+/// A tetrahedron's volume must exceed this fraction of the mesh's median volume.
+constexpr double kMinVolumeRatio = 1e-12;
+/// A tetrahedron's shape quality (its volume over that of the regular tetrahedron on its
+/// longest edge: about its thickness over that edge when flat) must reach this: the Newton
+/// matrix's condition grows as 1/quality^2, and beyond 1e12 no solve reaches its tolerance (a
+/// ball squashed to 1e-9 of its height fails every step; Gmsh's meshes stay above 1e-3).
+constexpr double kMinShapeQuality = 1e-6;
+/// Node coordinates must be at most this in magnitude: a tet's volume, a body's mass and its
+/// moments of inertia (cubes and squares of coordinates times the density) then stay finite.
+constexpr double kMaxCoordinate = 1e30;
+/// A node of a tet mesh may lie at most this many median longest edges of its tets from the
+/// mesh's median node position (per coordinate): far beyond any graded mesh, but a stray node
+/// (or one in other units) at 1e20 is named instead of the element it makes huge.
+constexpr double kMaxNodeDistance = 1e9;
+
 /// Throws InputError naming `where` and the first element (1-based id, as in the .msh file or
-/// the generator's numbering) whose volume is negative (inverted) or below 1e-12 of the mean
-/// element volume (degenerate). A mesh without tets (a rigid surface) has nothing to check.
+/// the generator's numbering) whose volume is negative (inverted), not finite, or at most
+/// kMinVolumeRatio of the median element volume (degenerate; the median, not the mean, so
+/// that one huge element does not make the others look degenerate), then the first whose
+/// shape quality is below kMinShapeQuality (flat). A mesh without tets (a rigid surface) has
+/// nothing to check.
 void check_tets(const BodyMesh& m, const std::string& where);
 
 /// As above, but naming tet e by element_ids[e] (e.g. its element tag in the .msh file) when
 /// `element_ids` is not empty.
 void check_tets(const BodyMesh& m, const std::string& where,
                 const std::vector<std::size_t>& element_ids);
+
+/// Throws InputError naming `where` and the first node (node_ids[n], e.g. its tag in the .msh
+/// file, or n + 1 if `node_ids` is empty) with a coordinate beyond kMaxCoordinate in magnitude,
+/// or, in a tet mesh, farther than kMaxNodeDistance median longest edges from the median node
+/// position.
+void check_nodes(const BodyMesh& m, const std::string& where,
+                 const std::vector<std::size_t>& node_ids);
+
+/// Throws InputError naming `where` and both element ids (as check_tets) if two tets have the
+/// same 4 nodes (in any order), or lie on the same 4 points through different nodes at exactly
+/// the same coordinates (a second copy of the mesh in the same file). Tets that merely overlap
+/// are not looked for.
+void check_distinct_tets(const BodyMesh& m, const std::string& where,
+                         const std::vector<std::size_t>& element_ids);
 
 /// The boundary triangles of the tet mesh (faces that belong to exactly one tet), oriented
 /// with the normal pointing out of the body, sorted deterministically. Empty for a rigid

@@ -3,6 +3,8 @@
 // `rectangle`) and the reader of Gmsh .msh files (our own strict parser).
 #include <Teuchos_ParameterList.hpp>
 #include <array>
+#include <string>
+#include <vector>
 
 #include "emcontact/mesh/body_mesh.hpp"
 
@@ -14,9 +16,23 @@ enum class MeshType { box, cylinder, hollow_cylinder, spherical_shell, plane, re
 /// Valid parameters of a body's `Mesh` sublist (with defaults, validators, doc strings).
 Teuchos::RCP<const Teuchos::ParameterList> valid_mesh_parameters();
 
+/// The values of `Mesh/type` that read the `Mesh` parameter `parameter` (each type reads its
+/// own: the corners of a box, the radii of a shell...); empty for `type` itself and for a name
+/// that is not a `Mesh` parameter.
+std::vector<std::string> types_reading(const std::string& parameter);
+
 /// True for the `type` values that always give a rigid surface (no tets): "plane", "rectangle".
 /// (A "file" without tetrahedra is one too, which is only known once it is read.)
 bool is_rigid_surface_type(MeshType type);
+
+/// At most this many tetrahedra in all the bodies of a run together (generated meshes and
+/// files): beyond it, one rank's share of the matrices outgrows any machine this runs on.
+constexpr double kMaxTets = 2e7;
+
+/// About the number of tetrahedra build_mesh makes of a generated volume (type box, cylinder,
+/// hollow cylinder, spherical shell: 8.5 V / size^3, regular tets of edge `size`), after
+/// checking its parameters as build_mesh does (InputError); 0 for the other types.
+double estimated_tets(const Teuchos::ParameterList& mesh_params, const std::string& where);
 
 /// Builds the mesh a validated `Mesh` sublist describes. `input_dir` resolves relative file
 /// names; `where` (e.g. "input.xml: Bodies/ball/Mesh") prefixes every error. Call on one rank

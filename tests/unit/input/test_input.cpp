@@ -14,6 +14,7 @@
 #include "emcontact/contact/pairs.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
+#include "emcontact/input/echo.hpp"
 #include "emcontact/input/input.hpp"
 #include "kernels/em_tet4.hpp"
 
@@ -178,7 +179,7 @@ TEST_F(InputTest, PoissonOneHalfRefused) {
   Xml x;
   x.material += R"(<Parameter name="poisson" type="double" value="0.5"/>)";
   expect_message(error(x),
-                 {"in.xml: parameter \"Bodies/ball/Material/poisson\"", ">= 0 and < 0.5"});
+                 {"in.xml: parameter \"Bodies/ball/Material/poisson\"", ">= 0 and <= 0.49999"});
 }
 
 TEST_F(InputTest, UnknownIntegratorRefused) {
@@ -475,12 +476,50 @@ TEST_F(InputTest, OverridesOfEveryType) {
 }
 
 TEST_F(InputTest, OverrideOfMeshParameter) {
-  const auto in = read(Xml{}, {"Bodies/ball/Mesh/size=0.02", "Bodies/ball/Mesh/type=file"});
+  const auto in = read(Xml{}, {"Bodies/ball/Mesh/size=0.02"});
   const auto& mesh = in.params->sublist("Bodies").sublist("ball").sublist("Mesh");
   EXPECT_EQ(mesh.get<double>("size"), 0.02);
-  EXPECT_EQ(mesh.get<std::string>("type"), "file");
+  Xml file;
+  file.mesh = R"(<Parameter name="type" type="string" value="box"/>)";
+  const auto in2 = read(file, {"Bodies/ball/Mesh/type=file", "Bodies/ball/Mesh/file=a.msh"});
+  EXPECT_EQ(in2.params->sublist("Bodies").sublist("ball").sublist("Mesh").get<std::string>("type"),
+            "file");
   expect_message(error(Xml{}, {"Bodies/ball/Mesh/type=sphere"}),
                  {"override \"Bodies/ball/Mesh/type=sphere\"", "\"box\", \"cylinder\""});
+}
+
+// A parameter of another mesh type would be silently ignored (a file given to a box).
+TEST_F(InputTest, MeshParameterOfAnotherTypeRefused) {
+  expect_message(error(Xml{}, {"Bodies/ball/Mesh/file=ball.msh"}),
+                 {"in.xml: parameter \"Bodies/ball/Mesh/file\": given, but type \"box\" does not "
+                  "read it (it is a parameter of type \"file\")",
+                  "allowed: the parameters of type \"box\": type, size, lower corner, upper "
+                  "corner; or a type that reads it"});
+  // the box's corners with type file in the file itself; a shell's radii on a cylinder
+  Xml file;
+  file.mesh = std::string(R"(<Parameter name="type" type="string" value="file"/>)") +
+              R"X(<Parameter name="upper corner" type="Array(double)" value="{1, 1, 1}"/>)X";
+  expect_message(error(file), {"parameter \"Bodies/ball/Mesh/upper corner\"",
+                               "type \"file\" does not read it", "types \"box\", \"rectangle\"",
+                               "the parameters of type \"file\": type, file, volume"});
+  // --set changing the type leaves the file's parameters of its own type alone, not its own
+  EXPECT_EQ(error(Xml{}, {"Bodies/ball/Mesh/type=file", "Bodies/ball/Mesh/file=a.msh"}), "");
+  expect_message(error(Xml{}, {"Bodies/ball/Mesh/type=file", "Bodies/ball/Mesh/size=0.02"}),
+                 {"parameter \"Bodies/ball/Mesh/size\": given, but type \"file\""});
+  Xml cyl;
+  cyl.mesh = R"(<Parameter name="type" type="string" value="cylinder"/>
+        <Parameter name="inner radius" type="double" value="0.05"/>)";
+  expect_message(error(cyl), {"parameter \"Bodies/ball/Mesh/inner radius\"",
+                              "types \"hollow cylinder\", \"spherical shell\"",
+                              "type, size, center, axis, height, radius"});
+  // every parameter a type reads is accepted, also when equal to its default
+  Xml shell;
+  shell.mesh = R"X(<Parameter name="type" type="string" value="spherical shell"/>
+        <Parameter name="center" type="Array(double)" value="{0, 0, 0}"/>
+        <Parameter name="inner radius" type="double" value="0.05"/>
+        <Parameter name="outer radius" type="double" value="0.1"/>
+        <Parameter name="size" type="double" value="0.1"/>)X";
+  EXPECT_EQ(error(shell), "");
 }
 
 TEST_F(InputTest, BodyGivenAsParameterRefused) {
@@ -535,7 +574,7 @@ TEST_F(InputTest, PassThroughAcceptsAnyContent) {
       </ParameterList>
     </ParameterList></ParameterList>)";
   const auto in = read(x, {"Solver/Linear/Belos/Maximum Iterations=50",
-                           "Solver/Linear/Belos/Convergence Tolerance=1",
+                           "Solver/Linear/Belos/Convergence Tolerance=0.5",
                            "Solver/Linear/Belos/Implicit Residual Scaling=Norm of RHS",
                            "Solver/Linear/Ifpack2/fact: drop tolerance=0.5",
                            "Solver/Linear/Ifpack2/schwarz: use reordering=true",
@@ -543,7 +582,7 @@ TEST_F(InputTest, PassThroughAcceptsAnyContent) {
   const auto& linear = in.params->sublist("Solver").sublist("Linear");
   const auto& belos = linear.sublist("Belos");
   EXPECT_EQ(belos.get<int>("Maximum Iterations"), 50);
-  EXPECT_EQ(belos.get<double>("Convergence Tolerance"), 1.0);  // keeps the file's type
+  EXPECT_EQ(belos.get<double>("Convergence Tolerance"), 0.5);  // keeps the file's type
   EXPECT_EQ(belos.get<std::string>("Orthogonalization"), "ICGS");
   EXPECT_EQ(belos.get<std::string>("Implicit Residual Scaling"), "Norm of RHS");
   EXPECT_EQ(linear.sublist("Ifpack2").get<double>("fact: drop tolerance"), 0.5);
@@ -562,7 +601,62 @@ TEST_F(InputTest, PassThroughOverrideKeepsExistingType) {
   expect_message(error(x, {"Solver/Linear/Belos/Num Blocks=abc"}), {"not a valid int"});
 }
 
+// ---------------------------------------------------------------- extreme values
+
+// Values no solid has, or that overflow, are refused naming the parameter (they failed as a
+// step that named nothing); real materials in SI and in the tonne-millimetre units are not.
+TEST_F(InputTest, ExtremeValuesRefusedNamingTheParameter) {
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"Bodies/ball/Material/density=1e308", "allowed: a double >= 1e-12 and <= 1e6"},
+      {"Bodies/ball/Material/young=1e308", "allowed: a double >= 1e-6 and <= 1e14"},
+      {"Bodies/ball/Material/young=4.9e-324", "allowed: a double >= 1e-6 and <= 1e14"},
+      {"Bodies/ball/Material/poisson=0.4999999999", "allowed: a double >= 0 and <= 0.49999"},
+      {"Bodies/ball/Initial/velocity={1e20, 0, 0}", "each >= -3e8 and <= 3e8"},
+      {"Loads/gravity={0, 0, -1e300}", "each >= -1e12 and <= 1e12"},
+      {"Solver/Linear/tolerance=1e300", "allowed: a double > 0 and < 1"}};
+  for (const auto& [set, allowed] : refused)
+    expect_message(error(Xml{}, {set}), {"override \"" + set + "\"", "out of range", allowed});
+  expect_message(error(Xml{}, {"Solver/Linear/Belos/Maximum Iterations=-1"}),
+                 {"parameter \"Solver/Linear/Belos/Maximum Iterations\": value -1 is out of "
+                  "range; allowed: an int >= 1"});
+  expect_message(error(Xml{}, {"Solver/Linear/Belos/Convergence Tolerance=2"}),
+                 {"parameter \"Solver/Linear/Belos/Convergence Tolerance\": value 2"});
+  for (const auto& ok : std::vector<std::vector<std::string>>{
+           {"Bodies/ball/Material/young=2.1e11", "Bodies/ball/Material/density=7850"},
+           {"Bodies/ball/Material/young=1e6", "Bodies/ball/Material/poisson=0.49"},
+           {"Bodies/ball/Material/young=2.1e5", "Bodies/ball/Material/density=7.85e-9"},
+           {"Bodies/ball/Initial/velocity={1e4, 0, 0}", "Loads/gravity={0, 0, -9.81}"}})
+    EXPECT_EQ(error(Xml{}, ok), "") << ok[0];
+}
+
+// ---------------------------------------------------------------- encodings
+
+TEST_F(InputTest, Utf8ByteOrderMarkAcceptedUtf16Refused) {
+  const std::string text = Xml{}.str();
+  EXPECT_EQ(error_of_file(write("\xef\xbb\xbf" + text), {}), "");
+  std::string utf16 = "\xff\xfe";
+  for (char c : text) utf16 += std::string(1, c) + '\0';
+  expect_message(error_of_file(write(utf16, "u16.xml"), {}),
+                 {"u16.xml: cannot read the input: it is UTF-16 text (a byte order mark); it must "
+                  "be UTF-8 (or ASCII) text"});
+  expect_message(error_of_file(write(utf16.substr(2), "le.xml"), {}),
+                 {"le.xml: cannot read the input: it holds a NUL byte (byte 1)"});
+}
+
 // ---------------------------------------------------------------- helpers and docs
+
+TEST(InputEcho, CutsEscapesAndLists) {
+  using emc::input::echo;
+  EXPECT_EQ(echo("short"), "short");
+  EXPECT_EQ(echo(std::string(80, 'a')), std::string(80, 'a'));
+  EXPECT_EQ(echo(std::string(5000, 'a')), std::string(80, 'a') + "... (5000 characters)");
+  EXPECT_EQ(echo(std::string("a\0b\n\x01", 5)), "a\\0b\\n\\x01");
+  const std::string e = echo(std::string(79, 'x') + "\xc3\xa9\xc3\xa9");  // not inside a character
+  EXPECT_EQ(e, std::string(79, 'x') + "\xc3\xa9... (83 characters)");
+  EXPECT_EQ(emc::input::echo_list({"a", "b"}), "\"a\", \"b\"");
+  EXPECT_EQ(emc::input::echo_list({"a", "b", "c", "d"}, 2), "\"a\", \"b\" and 2 more");
+  EXPECT_EQ(emc::input::echo_number(1e300), "1e+300");
+}
 
 TEST(InputDetail, FormatsValuesAndRanges) {
   using namespace emc::input::detail;
@@ -617,11 +711,11 @@ TEST(InputDocs, TablesListEveryParameter) {
        {"| `dt` | double | `0.01` | > 0 and <= 1e30 |",
         "| `integrator` | string | `energy-momentum` |",
         "| `max step cuts` | int | `6` | from 0 to 20 |",
-        "| `poisson` | double | `0.3` | >= 0 and < 0.5 |",
-        "| `velocity` | Array(double) | `{0, 0, 0}` | 3 numbers |", "| `Belos` | sublist |",
-        "| `progress` | bool | `true` | `true`, `false` |", "### `Bodies/<body>/Mesh`",
-        "### `Dirichlet/<condition>`", "### `Solver/Linear`", "```xml", "## Contact",
-        "### `Contact/<pair>`", "| `slave` | string | `\"\"` | any string |",
+        "| `poisson` | double | `0.3` | >= 0 and <= 0.49999 |",
+        "| `velocity` | Array(double) | `{0, 0, 0}` | 3 numbers, each >= -3e8 and <= 3e8 |",
+        "| `Belos` | sublist |", "| `progress` | bool | `true` | `true`, `false` |",
+        "### `Bodies/<body>/Mesh`", "### `Dirichlet/<condition>`", "### `Solver/Linear`", "```xml",
+        "## Contact", "### `Contact/<pair>`", "| `slave` | string | `\"\"` | any string |",
         "| `type` | string | `full stick` | `full stick`, `frictionless`, `coulomb` |",
         "| `friction coefficient` | double | `0` | >= 0 |",
         "| `max penetration` | double | `0` | >= 0 |", "| `half width` | double | `1` | > 0 |",

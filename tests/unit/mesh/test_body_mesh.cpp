@@ -1,7 +1,11 @@
 // BodyMesh queries on hand-made meshes: volumes, element checks, boundary triangles, surfaces.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "emcontact/error.hpp"
 #include "emcontact/mesh/body_mesh.hpp"
@@ -98,8 +102,101 @@ TEST(BodyMesh, CheckTetsRefusesDegenerateTet) {
     FAIL() << "no exception";
   } catch (const InputError& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find("where: element 2 is degenerate (volume 0, mean"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("where: element 2 is degenerate (volume 0, median"), std::string::npos)
+        << msg;
   }
+}
+
+/// The InputError message of f(), "" if none.
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// The 0-based index of node (i, j, k) of kuhn_cube(n).
+int cube_node(int n, int i, int j, int k) {
+  return (k * (n + 1) + j) * (n + 1) + i;
+}
+
+TEST(BodyMesh, ValidMeshPassesEveryCheck) {
+  const BodyMesh m = kuhn_cube(3);
+  EXPECT_EQ(error_of([&] { check_tets(m, "w"); }), "");
+  EXPECT_EQ(error_of([&] { check_nodes(m, "w", {}); }), "");
+  EXPECT_EQ(error_of([&] { check_distinct_tets(m, "w", {}); }), "");
+}
+
+// One node far away makes its tets huge: the others are not degenerate (the median volume, not
+// the mean, is the scale), the huge ones are flat, and check_nodes names the node itself.
+TEST(BodyMesh, FarNodeIsNamedAndNormalElementsAreNotBlamed) {
+  BodyMesh m = kuhn_cube(3);
+  const int far = cube_node(3, 3, 3, 3);
+  m.X[3 * far] = 1e15;
+  std::string msg = error_of([&] { check_tets(m, "w"); });
+  ASSERT_NE(msg.find(" is flat"), std::string::npos) << msg;
+  const int e = std::stoi(msg.substr(msg.find("element ") + 8)) - 1;
+  EXPECT_NE(std::find(&m.tets[4 * e], &m.tets[4 * e] + 4, far), &m.tets[4 * e] + 4)
+      << "element " << e + 1 << " does not hold the far node: " << msg;
+  msg = error_of([&] { check_nodes(m, "w", {}); });
+  EXPECT_NE(msg.find("w: node " + std::to_string(far + 1) +
+                     " lies 1e+15 from the mesh's median "
+                     "node position, more than 1e9 times the median longest edge"),
+            std::string::npos)
+      << msg;
+  m.X[3 * far] = 1e308;  // beyond kMaxCoordinate, named by its id
+  msg = error_of([&] { check_nodes(m, "w", std::vector<std::size_t>(m.num_nodes(), 77)); });
+  EXPECT_NE(msg.find("w: node 77 has the coordinate x = 1e+308; coordinates must be finite "
+                     "numbers of magnitude at most 1e30"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(BodyMesh, SquashedMeshIsFlat) {
+  BodyMesh m = kuhn_cube(2);
+  for (int n = 0; n < m.num_nodes(); ++n) m.X[3 * n + 2] *= 1e-9;
+  const std::string msg = error_of([&] { check_tets(m, "w"); });
+  EXPECT_NE(msg.find("w: element 1 is flat (its volume is "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("every tetrahedron must reach 1e-6 of it"), std::string::npos) << msg;
+  for (int n = 0; n < m.num_nodes(); ++n) m.X[3 * n + 2] *= 1e4;  // 1e-5: thin, but solvable
+  EXPECT_EQ(error_of([&] { check_tets(m, "w"); }), "");
+}
+
+TEST(BodyMesh, RepeatedTetIsRefusedNamingBothElements) {
+  BodyMesh m = kuhn_cube(2);
+  const int n = m.num_tets();
+  const int* t = &m.tets[4 * 5];
+  const std::vector<int> again{t[1], t[0], t[3], t[2]};  // the same nodes, an even permutation
+  m.tets.insert(m.tets.end(), again.begin(), again.end());
+  std::vector<std::size_t> ids(n + 1);
+  for (int e = 0; e <= n; ++e) ids[e] = 100 + e;
+  EXPECT_EQ(error_of([&] { check_tets(m, "w", ids); }), "");  // a valid tet on its own
+  const std::string msg = error_of([&] { check_distinct_tets(m, "w", ids); });
+  EXPECT_NE(msg.find("w: elements 105 and " + std::to_string(100 + n) + " have the same 4 nodes"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(BodyMesh, SecondCopyOnOtherNodesIsRefused) {
+  BodyMesh m = kuhn_cube(2);
+  const int nodes = m.num_nodes(), tets = m.num_tets();
+  m.X.insert(m.X.end(), m.X.begin(), m.X.end());
+  for (int k = 0; k < 4 * tets; ++k) m.tets.push_back(m.tets[k] + nodes);
+  EXPECT_EQ(error_of([&] { check_tets(m, "w"); }), "");
+  const std::string msg = error_of([&] { check_distinct_tets(m, "w", {}); });
+  ASSERT_NE(msg.find(" lie on the same 4 points through different nodes"), std::string::npos)
+      << msg;
+  int a = 0, b = 0;  // a tet and its copy
+  ASSERT_EQ(std::sscanf(msg.c_str(), "w: elements %d and %d", &a, &b), 2) << msg;
+  EXPECT_EQ(b - a, tets) << msg;
+  // a crack (nodes doubled along a face, no tet repeated) is not refused
+  BodyMesh crack = two_tets();
+  crack.X.insert(crack.X.end(), {0, 0, 0});  // node 5: a copy of node 0 for the lower tet
+  crack.tets[4] = 5;
+  EXPECT_EQ(error_of([&] { check_distinct_tets(crack, "w", {}); }), "");
 }
 
 TEST(BodyMesh, BoundaryOfOneTetIsItsFourOutwardFaces) {

@@ -148,6 +148,52 @@ TEST(MeshParameters, TooSmallSizeIsRefusedBeforeMeshing) {
   EXPECT_NE(msg.find("'size' (0.0001) is too small"), std::string::npos) << msg;
 }
 
+// OpenCASCADE fails on a sliver without a reason: refused before Gmsh, naming the parameter.
+TEST(MeshParameters, SliverIsRefusedBeforeGmsh) {
+  Teuchos::ParameterList p = params("box", 0.1);
+  p.set("upper corner", arr(1, 1e-9, 1));
+  std::string msg = build_error(p);
+  EXPECT_NE(msg.find("input.xml: Bodies/b/Mesh: parameter 'upper corner': the side along y "
+                     "('upper corner' - 'lower corner') is 1e-09, below 1e-6 of the body's "
+                     "largest extent 1"),
+            std::string::npos)
+      << msg;
+  Teuchos::ParameterList c = params("cylinder", 0.1);
+  c.set("height", 1e-8);
+  EXPECT_NE(build_error(c).find("parameter 'height': the height is 1e-08"), std::string::npos)
+      << build_error(c);
+  Teuchos::ParameterList h = params("hollow cylinder", 0.1);
+  h.set("inner radius", 0.1 - 1e-9);
+  h.set("outer radius", 0.1);
+  EXPECT_NE(build_error(h).find("parameter 'inner radius': the wall (outer radius - inner "
+                                "radius) is 1e-09"),
+            std::string::npos)
+      << build_error(h);
+}
+
+// A volume Gmsh fills with no tetrahedra is refused, naming its size and radii (it was a
+// rigid surface without a word).
+TEST(MeshParameters, VolumeWithoutTetsIsRefused) {
+  Teuchos::ParameterList p = params("spherical shell", 0.05);
+  p.set("inner radius", 0.0999999);
+  p.set("outer radius", 0.1);
+  const std::string msg = build_error(p);
+  EXPECT_NE(msg.find("input.xml: Bodies/b/Mesh: Gmsh made no tetrahedra of the spherical shell "
+                     "of inner radius 0.0999999, outer radius 0.1 with size 0.05 (its thinnest "
+                     "extent, 1e-07, is below 'size')"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(MeshParameters, EstimatedTets) {
+  Teuchos::ParameterList p = params("box", 0.1);
+  EXPECT_NEAR(estimated_tets(p, "w"), 8.5 * 1.0 / 1e-3, 1e-9);
+  EXPECT_EQ(estimated_tets(params("plane", 0.1), "w"), 0.0);
+  EXPECT_EQ(estimated_tets(params("file", 0.1), "w"), 0.0);
+  p.set("upper corner", arr(1, 0, 1));  // checked as build_mesh checks it
+  EXPECT_THROW(estimated_tets(p, "w"), InputError);
+}
+
 TEST(MeshParameters, FileTypeNeedsExistingFile) {
   Teuchos::ParameterList p = params("file", 0.1);
   EXPECT_NE(build_error(p).find("parameter 'file' is empty"), std::string::npos);

@@ -381,6 +381,57 @@ TEST(MshParser, NonFiniteCoordinateIsRefusedWithTheNodeTag) {
                  "a node coordinate '1e999' is out of the range of a double");
 }
 
+/// inputs/meshes/ball.msh as text.
+std::string ball_text() {
+  std::ifstream in(std::string(EMC_MESH_DIR) + "/ball.msh", std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// A tet given twice would count its mass and stiffness twice.
+TEST(ReadMsh, RepeatedTetIsRefusedNamingBothTags) {
+  ScratchDir dir("repeated");
+  std::string text = with(ball_text(), "3 1 4 698\n", "3 1 4 699\n");
+  // tet 315 once more as element 1013 (the element tags end at 1012)
+  const std::size_t first = text.find("3 1 4 699\n") + 10;
+  const std::string tet = text.substr(first, text.find('\n', first) - first);
+  text.insert(first, "1013" + tet.substr(tet.find(' ')) + "\n");
+  text = with(text, "2 1012 1 1012", "2 1013 1 1013");
+  expect_refused(dir, text,
+                 "elements " + tet.substr(0, tet.find(' ')) + " and 1013 have the same 4 nodes");
+  // a second copy of the first tet on new nodes at the same points: refused too
+  ScratchDir dir2("coincident");
+  std::string two = two_tet_msh("3 6 7 8 9");  // tet 3 on copies of nodes 1, 2, 3, 4
+  two = with(two, "$Nodes\n1 5 1 5\n3 1 0 5\n1\n2\n3\n4\n5\n",
+             "$Nodes\n1 9 1 9\n3 1 0 9\n1\n2\n3\n4\n5\n6\n7\n8\n9\n");
+  two = with(two, "0 0 -1\n$EndNodes", "0 0 -1\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes");
+  expect_refused(dir2, two, "elements 2 and 3 lie on the same 4 points through different nodes");
+}
+
+// A node far away (or not finite in effect) is named, not a normal element next to it.
+TEST(ReadMsh, FarNodeIsNamed) {
+  ScratchDir dir("far");
+  const std::string good = two_tet_msh("3 1 3 2 5");
+  expect_refused(dir, with(good, "\n0 0 -1\n", "\n1e308 0 -1\n"),
+                 "node 5 has the coordinate x = 1e+308; coordinates must be finite numbers of "
+                 "magnitude at most 1e30");
+  // one node of the ball far out on x (the mean volume would be about 1e15 times the others')
+  const std::string moved = with(ball_text(), "\n-0.05639451083650288 ", "\n1e20 ");
+  const std::string msg = text_error(dir, moved);
+  EXPECT_NE(msg.find("lies 1e+20 from the mesh's median node position"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("degenerate"), std::string::npos) << msg;
+}
+
+// A NUL byte in a section header is shown escaped, not the end of the message.
+TEST(MshParser, NulByteIsEscapedInTheMessage) {
+  ScratchDir dir("nul");
+  const std::string text = with(ball_text(), "$Nodes", std::string("$No\0des", 7));
+  const std::string msg = text_error(dir, text);
+  EXPECT_NE(msg.find("line 20 ($No\\0des): section $No\\0des has no $EndNo\\0des line"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(msg.find('\0'), std::string::npos);
+}
+
 TEST(MshParser, FormatHeaderSaysWhatIsAllowed) {
   ScratchDir dir("format");
   const std::string good = two_tet_msh("3 1 3 2 5");
