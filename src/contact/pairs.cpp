@@ -160,6 +160,7 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
       p.facets.push_back({off + t[0], off + t[1], off + t[2]});
     if (p.facets.empty()) throw InputError(where + "/master: the surface has no triangles");
     p.master_body = m.body;
+    p.slave_body = s.body;
     p.rigid_master = mb.rigid;
     p.edge = 2 * half_mean_edge(p.facets, x0);
     p.dmax = c.get<double>("max penetration");

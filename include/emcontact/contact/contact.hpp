@@ -59,7 +59,8 @@ class Contact {
   std::vector<Active> detect(Positions x0, Positions x1, const std::vector<Active>& active) const;
 
   /// §6.6: throws InputError (naming `file`, the pair, the node count and the depth) if a
-  /// slave node penetrates its master at t = 0 (collective).
+  /// slave node penetrates its master at t = 0, lies inside the master body, or a node of the
+  /// master surface lies inside the slave body (collective).
   void check_initial_penetration(const std::string& file) const;
 
   /// f_N = g_s . n_{n+1/2} of each active entry (§4); g is the contactless residual.
@@ -111,6 +112,8 @@ class Contact {
   std::vector<const Law*> distinct_laws_;
   mutable ContactNodes nodes_;
   void check_facing(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
+  void check_overlap(const Pair& pr, const std::vector<int>& my_slaves,
+                     const std::vector<double>& x, const std::string& file) const;
   std::vector<Active> detect_pair(int p, Positions x0, Positions x1,
                                   Kokkos::View<int*, ExecSpace> busy) const;
 };

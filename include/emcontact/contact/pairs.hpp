@@ -24,6 +24,7 @@ struct Pair {
   std::vector<int> slaves;      ///< global node ids, sorted
   std::vector<std::array<int, 3>> facets;  ///< geometry node ids, outward from the master
   int master_body = -1;
+  int slave_body = -1;
   bool rigid_master = false;
   double edge = 0;  ///< mean edge length of the master facets (reference configuration)
   /// The slave surface's triangles (global node ids) and, per slave node (index k into
