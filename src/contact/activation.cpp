@@ -195,30 +195,55 @@ void Contact::check_overlap(const Pair& pr, const std::vector<int>& my_slaves,
 }
 
 // docs/THEORY.md §6.6: a rigid surface whose facets turn their back to the slave body (its
-// centroid behind the facet it projects into, at any depth) can never be touched.
+// centroid behind the facet it projects into, at any depth) can never be touched. A slave
+// face lying on the surface has its centroid on the facet's plane up to round-off (1e-17 either
+// way on a tilted plane): then the slave surface's outward normal tells, against the facet's.
 void Contact::check_facing(const Pair& pr, const std::vector<double>& x,
                            const std::string& file) const {
   double c[3] = {0, 0, 0};
   for (int s : pr.slaves)
     for (int i = 0; i < 3; ++i) c[i] += x[3 * s + i] / pr.slaves.size();
-  double nearest = 1e300, gap_nearest = 0;
+  double nearest = 1e300, gap_nearest = 0, n[3] = {0, 0, 0};
   for (const auto& f : pr.facets) {
     double xm[3][3], xi[2], gap;
     for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 3; ++i) xm[k][i] = x[3 * f[k] + i];
-    if (!kernels::facet_cpp(c, xm, xi, gap) || kernels::facet_outside(xi) > 0) continue;
+    if (!kernels::facet_cpp(c, xm, xi, gap) || kernels::facet_outside(xi) > 1e-9) continue;
     if (std::fabs(gap) < nearest) {
       nearest = std::fabs(gap);
       gap_nearest = gap;
+      const kernels::Facet fc = kernels::facet(xm);
+      for (int i = 0; i < 3; ++i) n[i] = fc.n[i];
     }
   }
-  if (!(nearest < 1e300) || gap_nearest >= 0) return;
-  char buf[400];
+  if (!(nearest < 1e300)) return;
+  // the node check's tolerance (1e-9 of the facet size), and the gap's round-off
+  const double tol = std::max(1e-9 * pr.edge, gap_roundoff(pr.edge, c));
+  char buf[512];
+  if (gap_nearest < -tol) {
+    std::snprintf(buf, sizeof buf,
+                  "%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
+                  "centroid %.3g behind the facet it projects into); a master's facet normals "
+                  "must face the slave (a rigid plane's 'axis' points toward the slave)",
+                  file.c_str(), pr.name.c_str(), -gap_nearest);
+    throw InputError(buf);
+  }
+  if (gap_nearest > tol) return;
+  double ns[3] = {0, 0, 0};  // the slave surface's outward normal, area-weighted
+  for (const auto& t : pr.slave_facets) {
+    double xs[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) xs[k][i] = x[3 * t[k] + i];
+    const kernels::Facet fc = kernels::facet(xs);
+    for (int i = 0; i < 3; ++i) ns[i] += fc.area2 * fc.n[i];
+  }
+  if (!(ns[0] * n[0] + ns[1] * n[1] + ns[2] * n[2] > 0)) return;
   std::snprintf(buf, sizeof buf,
-                "%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
-                "centroid %.3g behind the facet it projects into); a master's facet normals must "
-                "face the slave (a rigid plane's 'axis' points toward the slave)",
-                file.c_str(), pr.name.c_str(), -gap_nearest);
+                "%s: Contact/%s: the slave surface lies on the rigid master at t = 0 facing the "
+                "same way (its outward normal along the facet's): the slave body lies behind it; "
+                "a master's facet normals must face the slave (a rigid plane's 'axis' points "
+                "toward the slave)",
+                file.c_str(), pr.name.c_str());
   throw InputError(buf);
 }
 

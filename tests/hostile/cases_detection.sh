@@ -1,5 +1,5 @@
-# Contact detection (docs/THEORY.md §6.6): bodies that overlap at t = 0. Each ran before with
-# exit 0 and a wrong result.
+# Contact detection (docs/THEORY.md §6.6): bodies that overlap at t = 0, a slave face lying on a
+# tilted rigid plane. Each ran before with exit 0 and a wrong result (or refused a good input).
 
 # --- bodies overlapping at t = 0 ---
 
@@ -33,4 +33,28 @@ hostile_overlap_master_inside_slave_refused() {
 hostile_flush_faces_are_not_an_overlap() {
   cp "$HERE/../regression/stack.xml" in.xml
   expect_exit_within 60 0 "$EMC" in.xml --set Time/end=0.02 --output out
+}
+
+# --- a slave face lying on a tilted rigid plane ---
+
+# The puck's bottom face on a plane tilted by 30 and by 7 degrees: its centroid is 1e-17 behind
+# the plane by round-off, and it was refused as lying behind. Accepted, E conserved.
+hostile_face_on_a_tilted_plane_accepted() {
+  cp "$HERE/../regression/tilted_plane.xml" in.xml
+  local axis
+  for axis in "0.5, 0, 0.8660254037844386" "0.12186934340514748, 0, 0.992546151641322"; do
+    expect_exit_within 60 0 "$EMC" in.xml "--set=Bodies/puck/Mesh/axis={$axis}" \
+      "--set=Bodies/slope/Mesh/axis={$axis}" --output out --overwrite
+    grep -Eq 'max \|E-E0\|/\|E0\| = [0-9.]+e-(1[1-9]|[2-9][0-9])' last.out ||
+      { echo "energy error:"; cat last.out; return 1; }
+  done
+}
+
+# The same face on the plane turned over (its axis away from the puck): the puck lies behind it.
+hostile_face_on_a_plane_facing_away_refused() {
+  cp "$HERE/../regression/tilted_plane.xml" in.xml
+  expect_exit_within 60 1 "$EMC" in.xml "--set=Bodies/slope/Mesh/axis={-0.5, 0, -0.8660254037844386}" \
+    --output out
+  expect_err "Contact/puck on slope: the slave surface lies on the rigid master at t = 0 facing the same way"
+  expect_short_err 1
 }
