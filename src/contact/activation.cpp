@@ -10,6 +10,7 @@
 #include "emcontact/contact/law.hpp"
 #include "emcontact/contact/overlap.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/parallel.hpp"
 
 namespace emc::contact {
 
@@ -135,6 +136,95 @@ std::vector<Active> Contact::detect_pair(int p, Positions x0, Positions x1,
   std::vector<Active> found(hh.data(), hh.data() + hh.extent(0));
   for (auto& a : found) a.slave = nodes_.global(a.slave);
   return found;
+}
+
+namespace {
+
+/// The count of my slaves of a pair that crossed a facet too deep, and the deepest of them
+/// (contact-node index).
+struct Deep {
+  int count = 0;
+  double gap = 0, closing = 0;
+  int node = -1;
+};
+
+/// The reduction of Deep over my slaves of a pair (a functor: device code is never in a
+/// private member).
+struct DeepCrossingsOf {
+  using value_type = Deep;
+  FacetGrid swept;
+  Kokkos::View<int* [3], ExecSpace> facets;
+  Positions x0, x1;
+  LocalSlaves ls;
+  Kokkos::View<int*, ExecSpace> busy;
+  EntryRule rule;
+
+  KOKKOS_INLINE_FUNCTION void operator()(const int k, Deep& r) const {
+    const int s = ls.node(k);
+    if (busy(s)) return;
+    const Crossing c = crossed_too_deep(swept, facets, x0, x1, s, rule);
+    if (c.facet < 0) return;
+    ++r.count;
+    if (r.node < 0 || c.gap < r.gap || (c.gap == r.gap && s < r.node)) {
+      r.gap = c.gap;
+      r.closing = c.closing;
+      r.node = s;
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void join(volatile Deep& a, const volatile Deep& b) const {
+    a.count += b.count;
+    if (b.node >= 0 && (a.node < 0 || b.gap < a.gap || (b.gap == a.gap && b.node < a.node))) {
+      a.gap = b.gap;
+      a.closing = b.closing;
+      a.node = b.node;
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void init(Deep& a) const {
+    a.count = 0;
+    a.gap = a.closing = 0;
+    a.node = -1;
+  }
+};
+
+}  // namespace
+
+// docs/THEORY.md §6.3: a node that crossed a facet deeper than the max penetration.
+DeepCrossings Contact::crossed_too_deep(Positions x0, Positions x1,
+                                        const std::vector<int>& active) const {
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: crossings");
+  Teuchos::TimeMonitor tm(*timer);
+  Kokkos::View<int*, ExecSpace> busy("emc::busy", nodes_.size());
+  auto bh = Kokkos::create_mirror_view(busy);
+  for (int n : active)
+    if (nodes_.local(n) >= 0) bh(nodes_.local(n)) = 1;
+  Kokkos::deep_copy(busy, bh);
+  std::vector<double> mine;  // per pair with a crossing: count, gap, closing, pair, node
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const LocalSlaves ls = nodes_.slaves(static_cast<int>(p));
+    const LocalFacets& lf = nodes_.facets(static_cast<int>(p));
+    if (ls.size() == 0 || lf.size() == 0) continue;
+    const FacetGrid swept =
+        lf.rigid_grid ? *lf.rigid_grid : FacetGrid(lf.nodes, x1, pairs_[p].dmax, x0);
+    Deep d;
+    Kokkos::parallel_reduce(
+        "emcontact::contact::crossed_too_deep", Kokkos::RangePolicy<ExecSpace>(0, ls.size()),
+        DeepCrossingsOf{swept, lf.nodes, x0, x1, ls, busy, entry_rule(pairs_[p])}, d);
+    if (d.count > 0)
+      mine.insert(mine.end(),
+                  {double(d.count), d.gap, d.closing, double(p), double(nodes_.global(d.node))});
+  }
+  DeepCrossings out;
+  const auto all = allgather(*disc_.comm(), mine);
+  for (std::size_t k = 0; k + 5 <= all.size(); k += 5) {
+    out.count += static_cast<int>(all[k]);
+    if (out.pair < 0 || all[k + 1] < out.gap) {
+      out.gap = all[k + 1];
+      out.closing = all[k + 2];
+      out.pair = static_cast<int>(all[k + 3]);
+      out.node = static_cast<int>(all[k + 4]);
+    }
+  }
+  return out;
 }
 
 // docs/THEORY.md §6.6: no slave node may start inside its master (reference configuration).

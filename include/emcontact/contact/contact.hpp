@@ -19,6 +19,15 @@ namespace emc::contact {
 
 class Law;
 
+/// docs/THEORY.md §6.3: the slave nodes that crossed a master facet over a step and end behind
+/// it deeper than the pair's max penetration (global), and the deepest of them.
+struct DeepCrossings {
+  int count = 0;
+  double gap = 0;      ///< the deepest one's g_N at t_{n+1} (negative)
+  double closing = 0;  ///< its g_N at t_n minus that
+  int pair = -1, node = -1;
+};
+
 /// A_ii of an owned dof i of A (0 if the row stores no diagonal entry).
 double diagonal_entry(const Matrix& A, GO i);
 
@@ -57,6 +66,12 @@ class Contact {
   /// §6.3: my inactive slave nodes that enter a master facet over the step (entered_facet),
   /// with that facet and xi from their law's activation point. x0, x1: positions at t_n, t_{n+1}.
   std::vector<Active> detect(Positions x0, Positions x1, const std::vector<Active>& active) const;
+
+  /// §6.3: my slave nodes, not among `active` (global ids of the entries active at the step's
+  /// accepted solve), that crossed a master facet over the step from x0 to x1 and end behind it
+  /// deeper than the pair's max penetration (detection.hpp crossed_too_deep), on all ranks
+  /// (collective). Activation cannot catch them: the step must be cut.
+  DeepCrossings crossed_too_deep(Positions x0, Positions x1, const std::vector<int>& active) const;
 
   /// §6.6: throws InputError (naming `file`, the pair, the node count and the depth) if a
   /// slave node penetrates its master at t = 0, lies inside the master body, or a node of the
