@@ -44,9 +44,11 @@ struct Entry {
   bool extended = false;  ///< the crossing point lies in the edge extension only
   bool side = false;      ///< the facet does not face the node (crossed strictly inside)
   bool beside = false;    ///< its plane is crossed beside it, the node ends strictly inside it
+  bool through = false;   ///< crossed strictly inside, the node ends beyond its edge extension
 
   KOKKOS_INLINE_FUNCTION bool before(const Entry& o) const {
     if (crossing != o.crossing) return crossing;
+    if (through != o.through) return !through;
     if (beside != o.beside) return !beside;
     if (side != o.side) return !side;
     if (extended != o.extended) return !extended;
@@ -94,9 +96,11 @@ KOKKOS_INLINE_FUNCTION bool outside_master(const FacetGrid& grid1, const Facets&
 /// the node lies on another facing facet (inside it, 0 <= g_N <= edge times its size): the node
 /// passes over that facet's edge. A node that crosses a facet's plane beside it (the point lies
 /// beyond the edge extension: it came over a neighbour, moving along the surface) and ends
-/// strictly inside it is a candidate after those crossed inside. A node behind a facet it did
-/// not cross, or crossed beside, is refused when it lies outside the master
-/// (detail::outside_master).
+/// strictly inside it is a candidate after those crossed inside. A node that crosses a facet's
+/// plane strictly inside it entered the master there: that facet is a candidate wherever the
+/// node ends (through it, beyond its edge extension), after the facets the node ends in. A node
+/// behind a facet it did not cross, or crossed beside, is refused when it lies outside the
+/// master (detail::outside_master).
 template <class Facets, class X>
 KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& facets, const X& x0,
                                          const X& x1, int s, const double ns[3],
@@ -107,7 +111,7 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
   grid1.for_each_candidate(y1, [&](const Hit& h1, double out1) {
     const kernels::FacetMetric m = grid1.metric(h1.facet);
     const double facing = detail::dot3(m.f.n, ns);
-    if (!(facing < rule.facing) || out1 > rule.edge) return;
+    if (!(facing < rule.facing)) return;
     const bool side = !(facing < -rule.facing);
     if (!side && out1 <= rule.strict && h1.gap >= -rule.round &&
         h1.gap <= rule.edge * kernels::sqrt(m.f.area2))
@@ -130,6 +134,10 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
     e.beside = e.crossing && outc > rule.edge && out1 <= rule.strict;
     if (e.beside) outc = out1;
     if (outc > rule.edge) return;
+    // docs/THEORY.md §6.3, through a facet: crossed strictly inside, the node entered the master
+    // there, wherever it ends (out over a master edge, or into another facet's region)
+    e.through = out1 > rule.edge;
+    if (e.through && !(e.crossing && outc <= rule.strict)) return;
     e.outside = outc > 0 ? outc : 0.0;
     e.extended = outc > rule.strict || out1 > rule.strict;
     if (e.extended && !e.crossing) return;  // the extension is for entries over the edge only

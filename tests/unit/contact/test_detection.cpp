@@ -205,6 +205,23 @@ TEST(EnteredFacet, NodeSlidingOverTheEdgeBetweenTwoFacets) {
   EXPECT_LT(c.enter(y0, z1, ns).facet, 0);
 }
 
+// A node crossing the top face strictly inside, near its edge, and ending beyond the edge
+// extension, outside the master beside the side face (two equal cubes dropped flat, the upper
+// face's corner passing the lower cube's top edge): it went through the master's edge region
+// and is caught on the face it crossed, with its gap there. Crossing the plane beside the face
+// (in its edge extension) and ending beyond it is passing over the edge: not caught.
+TEST(EnteredFacet, NodeThroughTheEdgeOfTheMaster) {
+  Cube c;
+  const double ns[3] = {0, 0, -1};
+  const double y0[3] = {0.99, 0.5, 1 + 4e-4}, y1[3] = {1.011, 0.5, 1 - 2.6e-3};
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_NEAR(c.normal(h.facet)[2], 1, 1e-15);
+  EXPECT_NEAR(h.gap, -2.6e-3, 1e-12);
+  const double z0[3] = {1.002, 0.5, 1 + 4e-4};
+  EXPECT_LT(c.enter(z0, y1, ns).facet, 0);
+}
+
 namespace {
 
 /// crossed_too_deep for node 8 of the cube moving from y0 to y1 (x0 and x1 of the cube as set).
