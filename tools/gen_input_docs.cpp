@@ -40,9 +40,14 @@ The master may be a body's whole boundary (its name) or one of its named surface
 (`body/surface`); both give the same contact: faces of equal size meeting flush, slave nodes on
 the master's edges and vertices, and nodes lying in the plane of a master face they do not touch
 are handled (a node is activated on the master facet it enters over the step, which faces it;
-docs/THEORY.md §6.3). A named surface only saves search work. A pair whose slave nodes already
-penetrate the master at t = 0 (overlapping bodies, or a rigid surface whose normal points away
-from the slave) is refused before the first step.
+docs/THEORY.md §6.3). A named surface of a deformable body is completed by the rest of the
+body's boundary, which holds the slave nodes that reach the body through another face (over the
+named surface's edge); on a rigid surface it only saves search work. A pair whose slave nodes
+already penetrate the master at t = 0, or lie inside the master body, or whose master lies
+inside the slave body (overlapping bodies at any depth), or a rigid surface whose normal points
+away from the slave, is refused before the first step. A slave node that crosses a master facet
+and ends behind it deeper than `max penetration` within one step makes the step fail: it is
+solved again with dt/2, and the run stops with a message naming `Time/dt` when the cuts run out.
 
 Where faces meet flush and stay pressed together (an impact of equal faces, a stack), take the
 contact face as the slave (`body/surface`) and set `massless slave = true`: a slave node held on

@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "emcontact/contact/active.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/echo.hpp"
@@ -34,6 +35,17 @@ std::string number(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", x);
   return buf;
+}
+
+/// docs/THEORY.md §6.3: the smallest max penetration, the round-off of a gap g_N on the master
+/// (contact::gap_roundoff: 64 eps of the largest coordinate and the facet size): a window
+/// -dmax < g_N < 0 narrower than that holds no penetration that can be told from touching.
+double min_penetration(const Box& master, double edge) {
+  double xmax = 0;
+  for (int c = 0; c < 3; ++c)
+    xmax = std::max({xmax, std::fabs(master.lo[c]), std::fabs(master.hi[c])});
+  const double x[3] = {xmax, 0, 0};
+  return contact::gap_roundoff(edge, x);
 }
 
 /// Coordinates of contact geometry node `n` (deformable: global node, rigid: num_nodes + k).
@@ -151,11 +163,17 @@ void check_contact_scales(const fem::Model& model, const std::vector<contact::Pa
     for (const auto& f : p.facets)
       for (int n : f) master.add(geometry_node(model, n));
     const double d = master.diagonal();
+    const std::string allowed = "allowed: 0 (automatic) or a depth from " +
+                                number(min_penetration(master, p.edge)) + " to " + number(d);
     if (p.dmax > d && d > 0)
       throw InputError(file + ": parameter \"Contact/" + p.name + "/max penetration\": value " +
                        number(p.dmax) + " is larger than the master surface (bounding box " +
-                       "diagonal " + number(d) + "): contact would never activate; allowed: 0 " +
-                       "(automatic) or a depth up to " + number(d));
+                       "diagonal " + number(d) + "): contact would never activate; " + allowed);
+    if (p.dmax < min_penetration(master, p.edge))
+      throw InputError(file + ": parameter \"Contact/" + p.name + "/max penetration\": value " +
+                       number(p.dmax) + " is below the round-off of a gap on the master (" +
+                       number(min_penetration(master, p.edge)) +
+                       "): no penetration could be told from touching; " + allowed);
   }
   Box deformable;
   for (std::size_t i = 0; i + 2 < model.X.size(); i += 3) deformable.add(&model.X[i]);

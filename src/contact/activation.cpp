@@ -2,12 +2,15 @@
 // starts inside its master), on the rank's contact nodes.
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
+#include <algorithm>
 #include <cstdio>
 
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/law.hpp"
+#include "emcontact/contact/overlap.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/parallel.hpp"
 
 namespace emc::contact {
 
@@ -135,6 +138,95 @@ std::vector<Active> Contact::detect_pair(int p, Positions x0, Positions x1,
   return found;
 }
 
+namespace {
+
+/// The count of my slaves of a pair that crossed a facet too deep, and the deepest of them
+/// (contact-node index).
+struct Deep {
+  int count = 0;
+  double gap = 0, closing = 0;
+  int node = -1;
+};
+
+/// The reduction of Deep over my slaves of a pair (a functor: device code is never in a
+/// private member).
+struct DeepCrossingsOf {
+  using value_type = Deep;
+  FacetGrid swept;
+  Kokkos::View<int* [3], ExecSpace> facets;
+  Positions x0, x1;
+  LocalSlaves ls;
+  Kokkos::View<int*, ExecSpace> busy;
+  EntryRule rule;
+
+  KOKKOS_INLINE_FUNCTION void operator()(const int k, Deep& r) const {
+    const int s = ls.node(k);
+    if (busy(s)) return;
+    const Crossing c = crossed_too_deep(swept, facets, x0, x1, s, rule);
+    if (c.facet < 0) return;
+    ++r.count;
+    if (r.node < 0 || c.gap < r.gap || (c.gap == r.gap && s < r.node)) {
+      r.gap = c.gap;
+      r.closing = c.closing;
+      r.node = s;
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void join(volatile Deep& a, const volatile Deep& b) const {
+    a.count += b.count;
+    if (b.node >= 0 && (a.node < 0 || b.gap < a.gap || (b.gap == a.gap && b.node < a.node))) {
+      a.gap = b.gap;
+      a.closing = b.closing;
+      a.node = b.node;
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void init(Deep& a) const {
+    a.count = 0;
+    a.gap = a.closing = 0;
+    a.node = -1;
+  }
+};
+
+}  // namespace
+
+// docs/THEORY.md §6.3: a node that crossed a facet deeper than the max penetration.
+DeepCrossings Contact::crossed_too_deep(Positions x0, Positions x1,
+                                        const std::vector<int>& active) const {
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: crossings");
+  Teuchos::TimeMonitor tm(*timer);
+  Kokkos::View<int*, ExecSpace> busy("emc::busy", nodes_.size());
+  auto bh = Kokkos::create_mirror_view(busy);
+  for (int n : active)
+    if (nodes_.local(n) >= 0) bh(nodes_.local(n)) = 1;
+  Kokkos::deep_copy(busy, bh);
+  std::vector<double> mine;  // per pair with a crossing: count, gap, closing, pair, node
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const LocalSlaves ls = nodes_.slaves(static_cast<int>(p));
+    const LocalFacets& lf = nodes_.facets(static_cast<int>(p));
+    if (ls.size() == 0 || lf.size() == 0) continue;
+    const FacetGrid swept =
+        lf.rigid_grid ? *lf.rigid_grid : FacetGrid(lf.nodes, x1, pairs_[p].dmax, x0);
+    Deep d;
+    Kokkos::parallel_reduce(
+        "emcontact::contact::crossed_too_deep", Kokkos::RangePolicy<ExecSpace>(0, ls.size()),
+        DeepCrossingsOf{swept, lf.nodes, x0, x1, ls, busy, entry_rule(pairs_[p])}, d);
+    if (d.count > 0)
+      mine.insert(mine.end(),
+                  {double(d.count), d.gap, d.closing, double(p), double(nodes_.global(d.node))});
+  }
+  DeepCrossings out;
+  const auto all = allgather(*disc_.comm(), mine);
+  for (std::size_t k = 0; k + 5 <= all.size(); k += 5) {
+    out.count += static_cast<int>(all[k]);
+    if (out.pair < 0 || all[k + 1] < out.gap) {
+      out.gap = all[k + 1];
+      out.closing = all[k + 2];
+      out.pair = static_cast<int>(all[k + 3]);
+      out.node = static_cast<int>(all[k + 4]);
+    }
+  }
+  return out;
+}
+
 // docs/THEORY.md §6.6: no slave node may start inside its master (reference configuration).
 void Contact::check_initial_penetration(const std::string& file) const {
   const auto x = contact::positions(disc_.model(), {});
@@ -155,35 +247,93 @@ void Contact::check_initial_penetration(const std::string& file) const {
                   count == 1 ? "s" : "", -deepest, -deepest / pr.edge);
     throw InputError(buf);
   }
+  for (std::size_t p = 0; p < pairs_.size(); ++p)
+    check_overlap(pairs_[p], nodes_.my_slaves(p), x, file);
   for (const Pair& pr : pairs_)
     if (pr.rigid_master) check_facing(pr, x, file);
 }
 
+// docs/THEORY.md §6.6: a slave node inside the master body at any depth (a body embedded in
+// another lies deeper than any facet's window), or a node of the master surface inside the
+// slave body (the master embedded in the slave: no slave node is inside it).
+void Contact::check_overlap(const Pair& pr, const std::vector<int>& my_slaves,
+                            const std::vector<double>& x, const std::string& file) const {
+  const auto report = [&](const Overlap& mine, const char* nodes, const char* body) {
+    const int count = global_count(mine.count);
+    if (count == 0) return;
+    double deepest = 0;
+    Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MAX, 1, &mine.deepest, &deepest);
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "%s: Contact/%s: %d %s node%s lie%s inside the %s body at t = 0 (deepest "
+                  "%.3g, %.3g of the facet size); the bodies must not overlap at the start",
+                  file.c_str(), pr.name.c_str(), count, nodes, count == 1 ? "" : "s",
+                  count == 1 ? "s" : "", body, deepest, deepest / pr.edge);
+    throw InputError(buf);
+  };
+  const fem::Model& m = disc_.model();
+  report(inside_body(m, pr.master_body, my_slaves, x, pr.edge), "slave", "master");
+  // the master surface's nodes, shared among the ranks
+  std::vector<int> master;
+  for (const auto& f : pr.facets) master.insert(master.end(), f.begin(), f.end());
+  std::sort(master.begin(), master.end());
+  master.erase(std::unique(master.begin(), master.end()), master.end());
+  const int rank = disc_.comm()->getRank(), ranks = disc_.comm()->getSize();
+  std::vector<int> share;
+  for (std::size_t k = rank; k < master.size(); k += ranks) share.push_back(master[k]);
+  report(inside_body(m, pr.slave_body, share, x, pr.edge), "master", "slave");
+}
+
 // docs/THEORY.md §6.6: a rigid surface whose facets turn their back to the slave body (its
-// centroid behind the facet it projects into, at any depth) can never be touched.
+// centroid behind the facet it projects into, at any depth) can never be touched. A slave
+// face lying on the surface has its centroid on the facet's plane up to round-off (1e-17 either
+// way on a tilted plane): then the slave surface's outward normal tells, against the facet's.
 void Contact::check_facing(const Pair& pr, const std::vector<double>& x,
                            const std::string& file) const {
   double c[3] = {0, 0, 0};
   for (int s : pr.slaves)
     for (int i = 0; i < 3; ++i) c[i] += x[3 * s + i] / pr.slaves.size();
-  double nearest = 1e300, gap_nearest = 0;
+  double nearest = 1e300, gap_nearest = 0, n[3] = {0, 0, 0};
   for (const auto& f : pr.facets) {
     double xm[3][3], xi[2], gap;
     for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 3; ++i) xm[k][i] = x[3 * f[k] + i];
-    if (!kernels::facet_cpp(c, xm, xi, gap) || kernels::facet_outside(xi) > 0) continue;
+    if (!kernels::facet_cpp(c, xm, xi, gap) || kernels::facet_outside(xi) > 1e-9) continue;
     if (std::fabs(gap) < nearest) {
       nearest = std::fabs(gap);
       gap_nearest = gap;
+      const kernels::Facet fc = kernels::facet(xm);
+      for (int i = 0; i < 3; ++i) n[i] = fc.n[i];
     }
   }
-  if (!(nearest < 1e300) || gap_nearest >= 0) return;
-  char buf[400];
+  if (!(nearest < 1e300)) return;
+  // the node check's tolerance (1e-9 of the facet size), and the gap's round-off
+  const double tol = std::max(1e-9 * pr.edge, gap_roundoff(pr.edge, c));
+  char buf[512];
+  if (gap_nearest < -tol) {
+    std::snprintf(buf, sizeof buf,
+                  "%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
+                  "centroid %.3g behind the facet it projects into); a master's facet normals "
+                  "must face the slave (a rigid plane's 'axis' points toward the slave)",
+                  file.c_str(), pr.name.c_str(), -gap_nearest);
+    throw InputError(buf);
+  }
+  if (gap_nearest > tol) return;
+  double ns[3] = {0, 0, 0};  // the slave surface's outward normal, area-weighted
+  for (const auto& t : pr.slave_facets) {
+    double xs[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) xs[k][i] = x[3 * t[k] + i];
+    const kernels::Facet fc = kernels::facet(xs);
+    for (int i = 0; i < 3; ++i) ns[i] += fc.area2 * fc.n[i];
+  }
+  if (!(ns[0] * n[0] + ns[1] * n[1] + ns[2] * n[2] > 0)) return;
   std::snprintf(buf, sizeof buf,
-                "%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
-                "centroid %.3g behind the facet it projects into); a master's facet normals must "
-                "face the slave (a rigid plane's 'axis' points toward the slave)",
-                file.c_str(), pr.name.c_str(), -gap_nearest);
+                "%s: Contact/%s: the slave surface lies on the rigid master at t = 0 facing the "
+                "same way (its outward normal along the facet's): the slave body lies behind it; "
+                "a master's facet normals must face the slave (a rigid plane's 'axis' points "
+                "toward the slave)",
+                file.c_str(), pr.name.c_str());
   throw InputError(buf);
 }
 

@@ -83,6 +83,23 @@ void index_slave_triangles(Pair& p) {
     for (int a : p.slave_facets[t]) p.slave_tris[fill[index(a)]++] = static_cast<int>(t);
 }
 
+/// docs/THEORY.md §6.3, a named master surface: the rest of the deformable master body's
+/// boundary follows the named surface's facets in p.facets, outward, so that a slave node that
+/// reaches the body through another face (over the named surface's edge) is held there too.
+void add_rest_of_boundary(const fem::Body& mb, Pair& p) {
+  const auto key = [](std::array<int, 3> t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  std::vector<std::array<int, 3>> named;
+  for (const auto& f : p.facets) named.push_back(key(f));
+  std::sort(named.begin(), named.end());
+  for (const auto& t : mesh::boundary_triangles(mb.mesh)) {
+    const std::array<int, 3> f = {mb.node_begin + t[0], mb.node_begin + t[1], mb.node_begin + t[2]};
+    if (!std::binary_search(named.begin(), named.end(), key(f))) p.facets.push_back(f);
+  }
+}
+
 }  // namespace
 
 void slave_normal(const Pair& p, int s, const std::vector<double>& x, double n[3]) {
@@ -161,8 +178,10 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
       p.facets.push_back({off + t[0], off + t[1], off + t[2]});
     if (p.facets.empty()) throw InputError(where + "/master: the surface has no triangles");
     p.master_body = m.body;
+    p.slave_body = s.body;
     p.rigid_master = mb.rigid;
     p.edge = 2 * half_mean_edge(p.facets, x0);
+    if (!mb.rigid && !m.surface.empty()) add_rest_of_boundary(mb, p);
     p.dmax = c.get<double>("max penetration");
     if (p.dmax <= 0) p.dmax = 0.5 * p.edge;
     pairs.push_back(std::move(p));

@@ -18,7 +18,9 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
   pl->set("master", std::string(""),
           "Required: the master surface, whose facets the slave nodes touch: a body name (the "
           "boundary of a deformable body, all triangles of a rigid surface) or body/surface. "
-          "Not the slave's body (no self-contact).",
+          "A named surface of a deformable body is completed by the rest of its body's boundary "
+          "(a slave node may reach the body through another face, docs/THEORY.md §6.3). Not "
+          "the slave's body (no self-contact).",
           any_string());
   pl->set("type", std::string("full stick"),
           "Contact condition on an active slave node: full stick (it sticks to its point of the "
@@ -37,7 +39,11 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
   pl->set("max penetration", 0.0,
           "Largest penetration [m] at which a slave node is caught by a master facet (a node "
           "deeper than this, e.g. behind a thin master, is not activated); 0: automatic, half "
-          "the mean edge length of the master's facets.",
+          "the mean edge length of the master's facets. A step in which a slave node crosses a "
+          "master facet and ends deeper than this behind it fails and is solved again with "
+          "dt/2 (docs/THEORY.md §6.3). At most the master surface's bounding-box diagonal, and "
+          "at least the round-off of a gap on it (64 eps times its largest coordinate plus its "
+          "mean facet edge).",
           double_at_least(0.0));
   pl->set("close gap", false,
           "true: every active slave node ends each step on its master facet (g_N = 0 at the "

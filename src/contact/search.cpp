@@ -14,9 +14,11 @@ using Policy = Kokkos::RangePolicy<ExecSpace>;
 
 /// Per facet f (docs/THEORY.md §2.3, §2.5): its grown box and what the CPP needs, computed once per
 /// grid with kernels::facet_metric, so that the queries give kernels::facet_cpp's bits.
+/// With `from` (not empty), each box also holds the facet at `from`: its sweep over the step.
 void fill_records(FacetGrid::FacetsView facets, FacetGrid::PointsView x, double margin,
-                  FacetGrid::Records rec, FacetGrid::Boxes box) {
+                  FacetGrid::PointsView from, FacetGrid::Records rec, FacetGrid::Boxes box) {
   using G = FacetGrid;
+  const bool swept = from.extent(0) > 0;
   Kokkos::parallel_for(
       "emcontact::contact::grid_records", Policy(0, facets.extent(0)), KOKKOS_LAMBDA(const int f) {
         double xm[3][3];
@@ -24,10 +26,15 @@ void fill_records(FacetGrid::FacetsView facets, FacetGrid::PointsView x, double 
           for (int i = 0; i < 3; ++i) xm[a][i] = x(facets(f, a), i);
         const kernels::FacetMetric m = kernels::facet_metric(xm);
         for (int i = 0; i < 3; ++i) {
-          const double lo = xm[0][i] < xm[1][i] ? xm[0][i] : xm[1][i];
-          const double hi = xm[0][i] < xm[1][i] ? xm[1][i] : xm[0][i];
-          box(f, i) = (lo < xm[2][i] ? lo : xm[2][i]) - margin;
-          box(f, 3 + i) = (hi < xm[2][i] ? xm[2][i] : hi) + margin;
+          double lo = xm[0][i], hi = xm[0][i];
+          for (int a = 0; a < 3; ++a)
+            for (int k = 0; k < (swept ? 2 : 1); ++k) {
+              const double v = k ? from(facets(f, a), i) : xm[a][i];
+              lo = v < lo ? v : lo;
+              hi = v > hi ? v : hi;
+            }
+          box(f, i) = lo - margin;
+          box(f, 3 + i) = hi + margin;
           rec(f, G::X1 + i) = xm[0][i];
           rec(f, G::T1 + i) = m.f.t1[i];
           rec(f, G::T2 + i) = m.f.t2[i];
@@ -235,11 +242,11 @@ CellLists cell_lists(const GridShape& s, FacetGrid::Boxes box) {
 }  // namespace
 
 // docs/THEORY.md §2.5: the grid of the grown boxes, built in parallel.
-FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin)
+FacetGrid::FacetGrid(FacetsView facets, PointsView x, double margin, PointsView from)
     : rec_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_records"), facets.extent(0)),
       box_(Kokkos::ViewAllocateWithoutInitializing("emc::grid_boxes"), facets.extent(0)) {
   const int nf = static_cast<int>(facets.extent(0));
-  fill_records(facets, x, margin, rec_, box_);
+  fill_records(facets, x, margin, from, rec_, box_);
   const Bounds b = bounds(box_, margin);
   // ties: 1e-14 of the mean grown box (its extent + 2 margin), or of 1/128 of the grid
   double h = nf ? std::max(b.ext / (3.0 * nf), 1e-12) + 2 * margin : 1.0;

@@ -134,7 +134,7 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
         return converged ? &newton_.last_residual() : nullptr;
       },
       settled, restoration_ ? closure_p_.get() : nullptr);
-  if (!ok) return false;
+  if (!ok || crossed_too_deep(u0, u1, h, settled.nodes, rep)) return false;
   rep.contact = settled.stats;
   closure_work_ = settled.closure;
   s_.active = std::move(settled.active);
@@ -144,6 +144,28 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   s_.contact_force = std::move(settled.force);
   s_.contact_slip = std::move(settled.slip);
   dissipated_ = settled.dissipated;
+  return true;
+}
+
+// docs/THEORY.md §6.3, §1.8: a slave node that crossed a master facet over the step and ends
+// behind it deeper than the pair's max penetration cannot be caught by activation (it went
+// through a thin master, or too deep into one): the step fails, to be solved again with dt/2.
+// `active`: the entries active at the step's accepted solve (they are held).
+bool Stepper::crossed_too_deep(const Vector& u0, const Vector& u1, double h,
+                               const std::vector<int>& active, StepReport& rep) const {
+  const contact::DeepCrossings d =
+      contact_->crossed_too_deep(contact_->positions(u0), contact_->positions(u1), active);
+  if (d.count == 0) return false;
+  const contact::Pair& p = contact_->pairs()[d.pair];
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "%d slave node%s crossed a master facet and ended deeper behind it than "
+                "Contact/%s/max penetration = %.3g (node %d: %.3g behind, approaching at %.3g m/s "
+                "over the step of %.3g s); a smaller Time/dt (or a larger max penetration) lets "
+                "contact catch %s",
+                d.count, d.count == 1 ? "" : "s", p.name.c_str(), p.dmax, d.node, -d.gap,
+                d.closing / h, h, d.count == 1 ? "it" : "them");
+  rep.last_failure = buf;
   return true;
 }
 

@@ -19,6 +19,15 @@ namespace emc::contact {
 
 class Law;
 
+/// docs/THEORY.md §6.3: the slave nodes that crossed a master facet over a step and end behind
+/// it deeper than the pair's max penetration (global), and the deepest of them.
+struct DeepCrossings {
+  int count = 0;
+  double gap = 0;      ///< the deepest one's g_N at t_{n+1} (negative)
+  double closing = 0;  ///< its g_N at t_n minus that
+  int pair = -1, node = -1;
+};
+
 /// A_ii of an owned dof i of A (0 if the row stores no diagonal entry).
 double diagonal_entry(const Matrix& A, GO i);
 
@@ -58,8 +67,15 @@ class Contact {
   /// with that facet and xi from their law's activation point. x0, x1: positions at t_n, t_{n+1}.
   std::vector<Active> detect(Positions x0, Positions x1, const std::vector<Active>& active) const;
 
+  /// §6.3: my slave nodes, not among `active` (global ids of the entries active at the step's
+  /// accepted solve), that crossed a master facet over the step from x0 to x1 and end behind it
+  /// deeper than the pair's max penetration (detection.hpp crossed_too_deep), on all ranks
+  /// (collective). Activation cannot catch them: the step must be cut.
+  DeepCrossings crossed_too_deep(Positions x0, Positions x1, const std::vector<int>& active) const;
+
   /// §6.6: throws InputError (naming `file`, the pair, the node count and the depth) if a
-  /// slave node penetrates its master at t = 0 (collective).
+  /// slave node penetrates its master at t = 0, lies inside the master body, or a node of the
+  /// master surface lies inside the slave body (collective).
   void check_initial_penetration(const std::string& file) const;
 
   /// f_N = g_s . n_{n+1/2} of each active entry (§4); g is the contactless residual.
@@ -111,6 +127,8 @@ class Contact {
   std::vector<const Law*> distinct_laws_;
   mutable ContactNodes nodes_;
   void check_facing(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
+  void check_overlap(const Pair& pr, const std::vector<int>& my_slaves,
+                     const std::vector<double>& x, const std::string& file) const;
   std::vector<Active> detect_pair(int p, Positions x0, Positions x1,
                                   Kokkos::View<int*, ExecSpace> busy) const;
 };

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "emcontact/contact/active.hpp"
 #include "emcontact/contact/pairs.hpp"
 #include "emcontact/contact/search.hpp"
 #include "kernels/facet.hpp"
@@ -43,9 +44,11 @@ struct Entry {
   bool extended = false;  ///< the crossing point lies in the edge extension only
   bool side = false;      ///< the facet does not face the node (crossed strictly inside)
   bool beside = false;    ///< its plane is crossed beside it, the node ends strictly inside it
+  bool through = false;   ///< crossed strictly inside, the node ends beyond its edge extension
 
   KOKKOS_INLINE_FUNCTION bool before(const Entry& o) const {
     if (crossing != o.crossing) return crossing;
+    if (through != o.through) return !through;
     if (beside != o.beside) return !beside;
     if (side != o.side) return !side;
     if (extended != o.extended) return !extended;
@@ -93,9 +96,11 @@ KOKKOS_INLINE_FUNCTION bool outside_master(const FacetGrid& grid1, const Facets&
 /// the node lies on another facing facet (inside it, 0 <= g_N <= edge times its size): the node
 /// passes over that facet's edge. A node that crosses a facet's plane beside it (the point lies
 /// beyond the edge extension: it came over a neighbour, moving along the surface) and ends
-/// strictly inside it is a candidate after those crossed inside. A node behind a facet it did
-/// not cross, or crossed beside, is refused when it lies outside the master
-/// (detail::outside_master).
+/// strictly inside it is a candidate after those crossed inside. A node that crosses a facet's
+/// plane strictly inside it entered the master there: that facet is a candidate wherever the
+/// node ends (through it, beyond its edge extension), after the facets the node ends in. A node
+/// behind a facet it did not cross, or crossed beside, is refused when it lies outside the
+/// master (detail::outside_master).
 template <class Facets, class X>
 KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& facets, const X& x0,
                                          const X& x1, int s, const double ns[3],
@@ -106,7 +111,7 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
   grid1.for_each_candidate(y1, [&](const Hit& h1, double out1) {
     const kernels::FacetMetric m = grid1.metric(h1.facet);
     const double facing = detail::dot3(m.f.n, ns);
-    if (!(facing < rule.facing) || out1 > rule.edge) return;
+    if (!(facing < rule.facing)) return;
     const bool side = !(facing < -rule.facing);
     if (!side && out1 <= rule.strict && h1.gap >= -rule.round &&
         h1.gap <= rule.edge * kernels::sqrt(m.f.area2))
@@ -129,6 +134,10 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
     e.beside = e.crossing && outc > rule.edge && out1 <= rule.strict;
     if (e.beside) outc = out1;
     if (outc > rule.edge) return;
+    // docs/THEORY.md §6.3, through a facet: crossed strictly inside, the node entered the master
+    // there, wherever it ends (out over a master edge, or into another facet's region)
+    e.through = out1 > rule.edge;
+    if (e.through && !(e.crossing && outc <= rule.strict)) return;
     e.outside = outc > 0 ? outc : 0.0;
     e.extended = outc > rule.strict || out1 > rule.strict;
     if (e.extended && !e.crossing) return;  // the extension is for entries over the edge only
@@ -144,6 +153,79 @@ KOKKOS_INLINE_FUNCTION Hit entered_facet(const FacetGrid& grid1, const Facets& f
   best.hit.inside = true;
   return best.hit;
 }
+
+/// docs/THEORY.md §6.3, a node that crosses a facet deeper than the max penetration: the facet
+/// (-1 if none), the node's gap behind it at t_{n+1} and the drop of that gap over the step.
+struct Crossing {
+  int facet = -1;
+  double gap = 0;      ///< g_N at t_{n+1}, <= -rule.dmax
+  double closing = 0;  ///< g_N at t_n minus g_N at t_{n+1}
+};
+
+namespace detail {
+
+/// g_N of the point y0 + s (y1 - y0) on facet xm0 + s (xm1 - xm0) (linear motion over the
+/// step), with its CPP xi; a degenerate facet gives 0 and xi outside.
+KOKKOS_INLINE_FUNCTION double gap_at(double s, const double y0[3], const double y1[3],
+                                     const double xm0[3][3], const double xm1[3][3], double xi[2]) {
+  double y[3], xm[3][3], gap = 0;
+  for (int i = 0; i < 3; ++i) {
+    y[i] = y0[i] + s * (y1[i] - y0[i]);
+    for (int a = 0; a < 3; ++a) xm[a][i] = xm0[a][i] + s * (xm1[a][i] - xm0[a][i]);
+  }
+  if (!kernels::facet_cpp(y, xm, xi, gap)) xi[0] = xi[1] = -1;
+  return gap;
+}
+
+}  // namespace detail
+
+/// docs/THEORY.md §6.3: the facet that slave node s crossed over the step from x0 (t_n) to x1
+/// (t_{n+1}) and ends behind deeper than rule.dmax, where activation cannot catch it: in front
+/// of the facet at t_n (g_N >= -round-off), g_N <= -dmax at t_{n+1}, and the point where it
+/// crosses the facet's plane (all nodes moving linearly over the step; found by bisection of
+/// g_N(s)) strictly inside the facet. It went through a thin master, or ended inside one
+/// deeper than its max penetration. swept: the grid of the facets' sweeps over the step
+/// (FacetGrid with `from` = x0). The deepest such facet, or facet = -1.
+template <class Facets, class X>
+KOKKOS_INLINE_FUNCTION Crossing crossed_too_deep(const FacetGrid& swept, const Facets& facets,
+                                                 const X& x0, const X& x1, int s,
+                                                 const EntryRule& rule) {
+  const double y1[3] = {x1(s, 0), x1(s, 1), x1(s, 2)}, y0[3] = {x0(s, 0), x0(s, 1), x0(s, 2)};
+  Crossing best;
+  swept.for_each_on_segment(y0, y1, [&](int f) {
+    double xm0[3][3], xm1[3][3], xi[2], g0, g1;
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) {
+        xm0[a][i] = x0(facets(f, a), i);
+        xm1[a][i] = x1(facets(f, a), i);
+      }
+    if (!kernels::facet_cpp(y1, xm1, xi, g1) || !(g1 <= -rule.dmax)) return;
+    const kernels::FacetMetric m0 = kernels::facet_metric(xm0);
+    if (!kernels::facet_cpp(y0, xm0, m0, xi, g0)) return;
+    const double round = gap_roundoff(kernels::sqrt(m0.f.area2), y0);
+    const double front = -(round > rule.round ? round : rule.round);
+    if (!(g0 >= front) || (best.facet >= 0 && !(g1 < best.gap))) return;
+    double lo = 0, hi = 1;  // g_N(lo) >= front > g_N(hi)
+    for (int k = 0; k < 64 && hi - lo > 1e-16; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      if (detail::gap_at(mid, y0, y1, xm0, xm1, xi) >= front)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    detail::gap_at(hi, y0, y1, xm0, xm1, xi);
+    if (kernels::facet_outside(xi) > rule.strict) return;
+    best.facet = f;
+    best.gap = g1;
+    best.closing = g0 - g1;
+  });
+  return best;
+}
+
+/// The same on a pair's global facets and positions (3 per geometry node), with the grid of
+/// the facets' sweeps built here.
+Crossing crossed_too_deep(const Pair& p, const std::vector<double>& x0,
+                          const std::vector<double>& x1, int s, const EntryRule& rule);
 
 /// The same on a pair's global facets and positions (3 per geometry node).
 Hit entered_facet(const FacetGrid& grid1, const Pair& p, const std::vector<double>& x0,

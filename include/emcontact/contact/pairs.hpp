@@ -22,10 +22,13 @@ struct Pair {
   bool close_gap = false;       ///< active nodes end every step on the master (docs/THEORY.md §7)
   bool massless_slave = false;  ///< the slave nodes' mass moved inward (docs/THEORY.md §6.8)
   std::vector<int> slaves;      ///< global node ids, sorted
-  std::vector<std::array<int, 3>> facets;  ///< geometry node ids, outward from the master
+  /// geometry node ids, outward from the master: the master surface's; for a named surface of a
+  /// deformable body, the rest of the body's boundary after them (docs/THEORY.md §6.3)
+  std::vector<std::array<int, 3>> facets;
   int master_body = -1;
+  int slave_body = -1;
   bool rigid_master = false;
-  double edge = 0;  ///< mean edge length of the master facets (reference configuration)
+  double edge = 0;  ///< mean edge length of the named master facets (reference configuration)
   /// The slave surface's triangles (global node ids) and, per slave node (index k into
   /// `slaves`), the triangles around it: slave_tris[tri_start[k] .. tri_start[k + 1]).
   std::vector<std::array<int, 3>> slave_facets;

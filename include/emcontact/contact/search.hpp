@@ -97,8 +97,10 @@ class FacetGrid {
   using Boxes = Kokkos::View<double* [6], Kokkos::LayoutRight, ExecSpace>;
 
   /// Bins the facets (3 indices into x each) with their boxes grown by margin, in parallel.
-  /// Only the records are kept: facets and x may go once the grid is built.
-  FacetGrid(FacetsView facets, PointsView x, double margin);
+  /// Only the records are kept: facets and x may go once the grid is built. With `from` (the
+  /// positions at the start of a step), each box holds the facet at x and at `from`: the grid
+  /// of the facets' sweeps (for_each_on_segment), its records at x.
+  FacetGrid(FacetsView facets, PointsView x, double margin, PointsView from = PointsView());
   /// The same from host containers (geometry node ids into x, 3 coordinates per node).
   FacetGrid(const std::vector<std::array<int, 3>>& facets, const std::vector<double>& x,
             double margin);
@@ -161,6 +163,63 @@ class FacetGrid {
       Hit h;
       if (cpp(f, y, h)) fn(h, kernels::facet_outside(h.xi));
     });
+  }
+
+  /// Calls fn(f) for every facet whose grown box overlaps a grid cell that the segment from a
+  /// to b passes through and meets the segment's box (docs/THEORY.md §6.3, a node crossing a
+  /// facet by more than the max penetration: the point where it crosses lies in the facet's
+  /// box). The cells are walked along the segment (Amanatides and Woo), at most the sum of the
+  /// grid's dimensions, so that the cost does not grow with the segment's length; a facet may
+  /// come more than once (from several cells).
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void for_each_on_segment(const double a[3], const double b[3],
+                                                  F&& fn) const {
+    double t0 = 0, t1 = 1, d[3], lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {  // the part of the segment in the grid: t0 <= t <= t1
+      d[i] = b[i] - a[i];
+      lo[i] = a[i] < b[i] ? a[i] : b[i];
+      hi[i] = a[i] < b[i] ? b[i] : a[i];
+      const double g0 = shape_.lo[i], g1 = shape_.lo[i] + shape_.dims[i] * shape_.h;
+      if (d[i] == 0) {
+        if (!(a[i] >= g0 && a[i] <= g1)) return;
+        continue;
+      }
+      double ta = (g0 - a[i]) / d[i], tb = (g1 - a[i]) / d[i];
+      if (ta > tb) {
+        const double t = ta;
+        ta = tb;
+        tb = t;
+      }
+      t0 = ta > t0 ? ta : t0;
+      t1 = tb < t1 ? tb : t1;
+    }
+    if (!(t0 <= t1)) return;
+    int c[3], step[3];
+    double next[3], delta[3];  // the t of the next cell boundary along each axis, and its period
+    for (int i = 0; i < 3; ++i) {
+      c[i] = shape_.clamp_index(a[i] + t0 * d[i], i);
+      step[i] = d[i] > 0 ? 1 : (d[i] < 0 ? -1 : 0);
+      next[i] = delta[i] = 1e300;
+      if (step[i] == 0) continue;
+      next[i] = (shape_.lo[i] + (c[i] + (step[i] > 0)) * shape_.h - a[i]) / d[i];
+      delta[i] = shape_.h / kernels::fabs(d[i]);
+    }
+    const int most = shape_.dims[0] + shape_.dims[1] + shape_.dims[2];
+    for (int n = 0; n < most; ++n) {
+      const int cell = (c[2] * shape_.dims[1] + c[1]) * shape_.dims[0] + c[0];
+      for (int k = boxes_.start(cell); k < boxes_.start(cell + 1); ++k)
+        for (int j = 0; j < CellBlock::W; ++j) {
+          const int f = boxes_.blocks(k).facet[j];
+          if (f >= 0 && !(hi[0] < box_(f, 0) || lo[0] > box_(f, 3) || hi[1] < box_(f, 1) ||
+                          lo[1] > box_(f, 4) || hi[2] < box_(f, 2) || lo[2] > box_(f, 5)))
+            fn(f);
+        }
+      const int i = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
+      if (next[i] > t1) return;
+      c[i] += step[i];
+      if (c[i] < 0 || c[i] >= shape_.dims[i]) return;
+      next[i] += delta[i];
+    }
   }
 
   /// Whether some facet's grown box holds y (exactly the facets for_each_candidate visits): a

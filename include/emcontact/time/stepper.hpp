@@ -113,6 +113,8 @@ class Stepper {
   void start_iterate(double h, bool no_contact, Vector& u1) const;
   void check_step_size(double h) const;
   bool solve_step(double h, Vector& u1, StepReport& rep);
+  bool crossed_too_deep(const Vector& u0, const Vector& u1, double h,
+                        const std::vector<int>& active, StepReport& rep) const;
   bool restore_energy(Vector& V1, StepReport& rep);
 };
 

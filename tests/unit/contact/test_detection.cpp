@@ -205,6 +205,84 @@ TEST(EnteredFacet, NodeSlidingOverTheEdgeBetweenTwoFacets) {
   EXPECT_LT(c.enter(y0, z1, ns).facet, 0);
 }
 
+// A node crossing the top face strictly inside, near its edge, and ending beyond the edge
+// extension, outside the master beside the side face (two equal cubes dropped flat, the upper
+// face's corner passing the lower cube's top edge): it went through the master's edge region
+// and is caught on the face it crossed, with its gap there. Crossing the plane beside the face
+// (in its edge extension) and ending beyond it is passing over the edge: not caught.
+TEST(EnteredFacet, NodeThroughTheEdgeOfTheMaster) {
+  Cube c;
+  const double ns[3] = {0, 0, -1};
+  const double y0[3] = {0.99, 0.5, 1 + 4e-4}, y1[3] = {1.011, 0.5, 1 - 2.6e-3};
+  const Hit h = c.enter(y0, y1, ns);
+  ASSERT_GE(h.facet, 0);
+  EXPECT_NEAR(c.normal(h.facet)[2], 1, 1e-15);
+  EXPECT_NEAR(h.gap, -2.6e-3, 1e-12);
+  const double z0[3] = {1.002, 0.5, 1 + 4e-4};
+  EXPECT_LT(c.enter(z0, y1, ns).facet, 0);
+}
+
+namespace {
+
+/// crossed_too_deep for node 8 of the cube moving from y0 to y1 (x0 and x1 of the cube as set).
+emc::contact::Crossing crossing(Cube& c, const double y0[3], const double y1[3]) {
+  for (int i = 0; i < 3; ++i) {
+    c.x0[24 + i] = y0[i];
+    c.x1[24 + i] = y1[i];
+  }
+  return emc::contact::crossed_too_deep(c.pair, c.x0, c.x1, 8, emc::contact::entry_rule(c.pair));
+}
+
+}  // namespace
+
+// A node that crosses a facet and ends behind it deeper than the max penetration (0.5 for the
+// unit cube) is found, with its depth and the drop of its gap: through the whole cube, into it
+// beyond dmax, and up through the bottom face. Within dmax it is activation's; beside the cube,
+// starting behind a face, or leaving the cube it is not a crossing.
+TEST(CrossedTooDeep, ThroughOrTooDeepIntoTheMaster) {
+  Cube c;
+  const double above[3] = {0.3, 0.6, 1.01};
+  for (double z : {-0.5, 0.4}) {
+    const double y1[3] = {0.3, 0.6, z};
+    const auto k = crossing(c, above, y1);
+    ASSERT_GE(k.facet, 0) << z;
+    EXPECT_NEAR(c.normal(k.facet)[2], 1, 1e-15);
+    EXPECT_NEAR(k.gap, z - 1, 1e-14);
+    EXPECT_NEAR(k.closing, 1.01 - z, 1e-14);
+  }
+  const double below[3] = {0.7, 0.2, -0.01}, up[3] = {0.7, 0.2, 0.6};
+  const auto b = crossing(c, below, up);
+  ASSERT_GE(b.facet, 0);
+  EXPECT_NEAR(c.normal(b.facet)[2], -1, 1e-15);
+  const double shallow[3] = {0.3, 0.6, 0.6}, beside0[3] = {1.01, 0.5, 2},
+               beside1[3] = {1.01, 0.5, -1};
+  EXPECT_LT(crossing(c, above, shallow).facet, 0);
+  EXPECT_LT(crossing(c, beside0, beside1).facet, 0);
+  const double inside[3] = {0.5, 0.5, 0.9}, out[3] = {0.5, 0.5, -2};
+  EXPECT_LT(crossing(c, inside, out).facet, 0);  // behind the top face at t_n; leaves the cube
+  // exactly through an edge shared by two facets of the top face (its diagonal) and a vertex
+  const double e0[3] = {0.25, 0.25, 1.5}, e1[3] = {0.25, 0.25, -0.5};
+  EXPECT_GE(crossing(c, e0, e1).facet, 0);
+  const double v0[3] = {1, 1, 1.5}, v1[3] = {1 - 1e-3, 1 - 1e-3, 0.2};
+  EXPECT_GE(crossing(c, v0, v1).facet, 0);
+}
+
+// The master moves: a node at rest that the cube sweeps over in one step (the cube from above
+// it to below it) crossed its bottom face; the grid of the sweeps finds the facet, which is
+// nowhere near the node at either end of the step.
+TEST(CrossedTooDeep, AMasterSweepingOverTheNode) {
+  Cube c;
+  for (int k = 0; k < 8; ++k) {
+    c.x0[3 * k + 2] += 1.5;  // z from 1.5 to 2.5
+    c.x1[3 * k + 2] -= 3;    // z from -3 to -2
+  }
+  const double y[3] = {0.4, 0.4, 0.5};
+  const auto k = crossing(c, y, y);
+  ASSERT_GE(k.facet, 0);
+  EXPECT_NEAR(c.normal(k.facet)[2], -1, 1e-15);
+  EXPECT_NEAR(k.gap, -3.5, 1e-14);
+}
+
 // facet_clamp gives the closest point of the triangle (brute force over a fine sampling).
 TEST(FacetClamp, MatchesBruteForce) {
   std::mt19937 rng(3);

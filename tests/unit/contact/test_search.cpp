@@ -168,6 +168,117 @@ TEST(FacetGrid, MatchesBruteForce) {
   EXPECT_GT(found, 3800);  // a few queries near the outer border project outside every facet
 }
 
+namespace {
+
+/// Whether the segment from a to b meets the box lo - m .. hi + m (slabs).
+bool segment_meets(const double a[3], const double b[3], const double lo[3], const double hi[3],
+                   double m) {
+  double t0 = 0, t1 = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double d = b[i] - a[i];
+    if (d == 0) {
+      if (a[i] < lo[i] - m || a[i] > hi[i] + m) return false;
+      continue;
+    }
+    double ta = (lo[i] - m - a[i]) / d, tb = (hi[i] + m - a[i]) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
+}
+
+/// The facets whose box, at x or at `from` (empty: x only), grown by m meets the segment.
+std::vector<int> brute_segment(const double a[3], const double b[3],
+                               const std::vector<std::array<int, 3>>& facets,
+                               const std::vector<double>& x, const std::vector<double>& from,
+                               double m) {
+  std::vector<int> out;
+  for (std::size_t f = 0; f < facets.size(); ++f) {
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (const auto* v : {&x, &from})
+      for (int n : facets[f])
+        for (int i = 0; i < 3 && !v->empty(); ++i) {
+          lo[i] = std::min(lo[i], (*v)[3 * n + i]);
+          hi[i] = std::max(hi[i], (*v)[3 * n + i]);
+        }
+    if (segment_meets(a, b, lo, hi, m)) out.push_back(static_cast<int>(f));
+  }
+  return out;
+}
+
+/// The grid of the facets' sweeps from `from` to x (FacetGrid with `from`).
+emc::contact::FacetGrid swept_grid(const std::vector<std::array<int, 3>>& facets,
+                                   const std::vector<double>& x, double margin,
+                                   const std::vector<double>& from) {
+  const auto dev = [](auto v) {
+    return Kokkos::create_mirror_view_and_copy(emc::ExecSpace::memory_space(), v);
+  };
+  using Points = Kokkos::View<const double* [3], Kokkos::HostSpace>;
+  return emc::contact::FacetGrid(
+      dev(Kokkos::View<const int* [3], Kokkos::HostSpace>(facets.front().data(), facets.size())),
+      dev(Points(x.data(), x.size() / 3)), margin, dev(Points(from.data(), from.size() / 3)));
+}
+
+}  // namespace
+
+// docs/THEORY.md §6.3: the cells along a segment hold every facet whose grown box (of its sweep
+// from `from` to x) the segment meets: short and long segments, along the axes, ending far
+// outside the grid, and points; every facet visited meets the segment's box.
+TEST(FacetGrid, SegmentVisitsEveryBoxItMeets) {
+  std::vector<std::array<int, 3>> facets;
+  std::vector<double> x, from;
+  bumpy(20, facets, x);
+  from = x;
+  for (std::size_t n = 0; n < x.size(); n += 3) from[n + 2] += 0.3 * x[n];  // a sheared sweep
+  const double margin = 0.02;
+  for (const bool swept : {false, true}) {
+    std::vector<double> none;
+    const auto& f0 = swept ? from : none;
+    const auto grid =
+        swept ? swept_grid(facets, x, margin, from) : emc::contact::FacetGrid(facets, x, margin);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> d(-0.2, 1.2), far(-50, 50);
+    for (int t = 0; t < 600; ++t) {
+      double a[3] = {d(rng), d(rng), 0.5 * d(rng)}, b[3] = {d(rng), d(rng), 0.5 * d(rng)};
+      if (t % 5 == 1)
+        for (double& c : b) c = a[0] + 0.01 * (c - a[0]);  // short
+      if (t % 5 == 2) b[0] = a[0], b[1] = a[1];            // along z
+      if (t % 5 == 3)
+        for (double& c : b) c = far(rng);  // far outside the grid
+      if (t % 5 == 4)
+        for (int i = 0; i < 3; ++i) b[i] = a[i];  // a point
+      std::vector<int> seen;
+      grid.for_each_on_segment(a, b, [&](int f) { seen.push_back(f); });
+      std::sort(seen.begin(), seen.end());
+      seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+      const auto want = brute_segment(a, b, facets, x, f0, margin);
+      for (int f : want)
+        ASSERT_TRUE(std::binary_search(seen.begin(), seen.end(), f))
+            << "segment " << t << " misses facet " << f;
+      double lo[3], hi[3];
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(a[i], b[i]);
+        hi[i] = std::max(a[i], b[i]);
+      }
+      for (int f : seen) {  // every facet visited meets the segment's box
+        double flo[3] = {1e300, 1e300, 1e300}, fhi[3] = {-1e300, -1e300, -1e300};
+        for (const std::vector<double>* v :
+             std::initializer_list<const std::vector<double>*>{&x, &f0})
+          for (int n : facets[f])
+            for (int i = 0; i < 3 && !v->empty(); ++i) {
+              flo[i] = std::min(flo[i], (*v)[3 * n + i]);
+              fhi[i] = std::max(fhi[i], (*v)[3 * n + i]);
+            }
+        for (int i = 0; i < 3; ++i) {
+          EXPECT_LE(flo[i] - margin, hi[i] + 1e-12) << t;
+          EXPECT_GE(fhi[i] + margin, lo[i] - 1e-12) << t;
+        }
+      }
+    }
+  }
+}
+
 // The batch query (visited in grid-cell order) gives every point the same hit, bit for bit, as
 // its own locate(), including points outside the grid (no hit).
 TEST(FacetGrid, BatchInCellOrderMatchesSingleQueries) {
