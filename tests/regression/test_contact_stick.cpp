@@ -1,8 +1,10 @@
 // Full stick contact by direct elimination (docs/THEORY.md §4, §6), whole runs.
 #include <gtest/gtest.h>
 
+#include <Teuchos_CommHelpers.hpp>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "emcontact/app/simulation.hpp"
 #include "run_case.hpp"
@@ -233,4 +235,75 @@ TEST(FullStick, MasslessSlaveKeepsTheInitialMomenta) {
   EXPECT_LT(dJ, 1e-9);
   EXPECT_LT(dK, 1e-9);
   EXPECT_LT(dc, 1e-9);
+}
+
+namespace {
+
+/// The smallest entry of every rank's v (infinity if none). Collective.
+double global_min(const std::vector<double>& v) {
+  double mine = std::numeric_limits<double>::infinity(), all = mine;
+  for (double x : v) mine = std::min(mine, x);
+  Teuchos::reduceAll(*Tpetra::getDefaultComm(), Teuchos::REDUCE_MIN, 1, &mine, &all);
+  return all;
+}
+
+/// Steps the case to its end; per step, the monitors' normal_force_min against the smallest
+/// normal force of the nodes active at the accepted solve (SettledSet::force, those released at
+/// the end of the step included; docs/THEORY.md §6.5): the smallest and largest value over the
+/// steps with active nodes, the mismatches, and the steps without active nodes where it is not 0.
+struct ForceMin {
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  int active_steps = 0, mismatches = 0, nonzero_without_contact = 0;
+};
+ForceMin step_force_min(const std::string& xml, std::vector<std::string> sets) {
+  auto sim = setup_case(xml, std::move(sets));
+  ForceMin r;
+  while (!sim->stepper->finished()) {
+    const auto rep = sim->stepper->advance();
+    const double f = rep.contact.normal_force_min;
+    if (rep.contact.active == 0) {
+      r.nonzero_without_contact += f != 0;
+      continue;
+    }
+    ++r.active_steps;
+    r.mismatches += f != global_min(sim->state.contact_force);
+    r.lowest = std::min(r.lowest, f);
+    r.highest = std::max(r.highest, f);
+  }
+  return r;
+}
+
+}  // namespace
+
+// docs/THEORY.md §6.5: normal_force_min is the smallest f_N of the nodes active at the accepted
+// solve (f_N > 0 compressive), 0 in a step without one. A block settled on the rigid ground:
+// positive at every step, the least loaded node's force (its monitors column too); the first
+// impacts of the three disks (inputs/three_disks.xml, frictionless), where nodes released in
+// tension and re-activated in the same step are still in tension at the accepted solve and leave
+// at the end of the step (docs/THEORY.md §6.4): negative in those steps.
+TEST(FullStick, NormalForceMinIsTheSmallestNormalForce) {
+  const std::vector<std::string> rest = {"Bodies/block/Mesh/lower corner={-0.1, -0.1, 0}",
+                                         "Bodies/block/Mesh/upper corner={0.1, 0.1, 0.2}",
+                                         "Bodies/block/Initial/velocity={0, 0, 0}",
+                                         "Bodies/block/Initial/angular velocity={0, 0, 0}",
+                                         "Time/settle steps=100",
+                                         "Time/end=0.05"};
+  const ForceMin block = step_force_min("drop.xml", rest);
+  const ForceMin disks =
+      step_force_min("../../inputs/three_disks.xml", {"Output/every=0", "Time/end=0.12"});
+  std::printf(
+      "resting block: %d steps in contact, normal_force_min in [%.4g, %.4g], %d mismatches\n"
+      "three disks: %d steps in contact, normal_force_min in [%.4g, %.4g], %d mismatches\n",
+      block.active_steps, block.lowest, block.highest, block.mismatches, disks.active_steps,
+      disks.lowest, disks.highest, disks.mismatches);
+  EXPECT_EQ(block.active_steps, 10);
+  EXPECT_EQ(block.mismatches, 0);
+  EXPECT_GT(block.lowest, 0);
+  EXPECT_GT(disks.active_steps, 0);
+  EXPECT_EQ(disks.mismatches, 0);
+  EXPECT_EQ(disks.nonzero_without_contact, 0);
+  EXPECT_LT(disks.lowest, 0);  // a node in tension at the accepted solve
+  // the column of monitors.csv is the same value
+  const auto rows = run_case("drop.xml", rest, "out_rest_force_min");
+  for (std::size_t k = 1; k < rows.size(); ++k) EXPECT_GT(rows[k].normal_force_min, 0) << k;
 }
