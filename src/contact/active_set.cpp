@@ -82,7 +82,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     fN = contact_.normal_forces(*g, x0, x1, trial);
     int n_state = 0;  // docs/THEORY.md §11.4: the return map (stick <-> slip)
     {
-      const LawState s{contact_, constraints_.index(), x0, x1, {}};
+      const LawState s{contact_, constraints_.index(), x0, x1, {}, constraints_.matrix()};
       for (const Law* law : contact_.laws()) {
         n_state += law->settle(s, trial, *g);
         law->activate(s, fresh, *g);
