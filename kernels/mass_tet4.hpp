@@ -20,47 +20,23 @@ KOKKOS_INLINE_FUNCTION void mass_times(double rho, double Ve, const double v[4][
   }
 }
 
-/// docs/THEORY.md §6.8: the element mass with the mass of its massless nodes (bit a of `massless`
-/// set for node a) moved to its other nodes, M' = T^T M T with (T v)_a = v_a for a massive node
-/// and the mean of the massive nodes' v for a massless one: symmetric, the same total mass
-/// (T keeps constants), zero rows and columns at the massless nodes. An element whose four
-/// nodes are all massless (or none) keeps M.
-KOKKOS_INLINE_FUNCTION void mass_times(double rho, double Ve, int massless, const double v[4][3],
-                                       double p[4][3]) {
-  int heavy = 0;
-  for (int a = 0; a < 4; ++a) heavy += ((massless >> a) & 1) == 0;
-  if (heavy == 4 || heavy == 0) {
-    mass_times(rho, Ve, v, p);
-    return;
-  }
-  double w[4][3], q[4][3];
-  for (int i = 0; i < 3; ++i) {
-    double mean = 0;
-    for (int a = 0; a < 4; ++a) mean += ((massless >> a) & 1) ? 0.0 : v[a][i];
-    mean /= heavy;
-    for (int a = 0; a < 4; ++a) w[a][i] = ((massless >> a) & 1) ? mean : v[a][i];
-  }
-  mass_times(rho, Ve, w, q);
-  for (int i = 0; i < 3; ++i) {
-    double light = 0;
-    for (int a = 0; a < 4; ++a) light += ((massless >> a) & 1) ? q[a][i] : 0.0;
-    for (int a = 0; a < 4; ++a) p[a][i] = ((massless >> a) & 1) ? 0.0 : q[a][i] + light / heavy;
-  }
-}
-
-/// M'_AB of the mass above (scalar; the 3x3 block is this times identity).
-KOKKOS_INLINE_FUNCTION void mass_matrix(double rho, double Ve, int massless, double M[4][4]) {
-  if (massless == 0 || massless == 15) {
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) M[a][b] = mass_ab(rho, Ve, a, b);
-    return;
-  }
-  for (int b = 0; b < 4; ++b) {
-    double e[4][3] = {}, p[4][3];
-    e[b][0] = 1;
-    mass_times(rho, Ve, massless, e, p);
-    for (int a = 0; a < 4; ++a) M[a][b] = p[a][0];
-  }
+/// docs/THEORY.md §6.8: the element mass of an element with massless nodes, M'_e = T_e^T M_e T_e,
+/// where node a of the element moves as sum_j W[a][j] v_j over the K supports j (W: 4 rows of K,
+/// row-major; a massive node is its own support with weight 1, a massless node's row its affine
+/// fit over massive nodes): M'_jk = rho V_e / 20 (sum_a W_aj W_ak + s_j s_k), s_j = sum_a W_aj
+/// (M_e = rho V_e / 20 (I + 1 1^T)). M' (K x K, row-major) is symmetric positive semi-definite.
+KOKKOS_INLINE_FUNCTION void moved_mass(double rho, double Ve, const double* W, int K, double* M) {
+  const double c = rho * Ve / 20.0;
+  for (int j = 0; j < K; ++j)
+    for (int k = 0; k < K; ++k) {
+      double ww = 0, sj = 0, sk = 0;
+      for (int a = 0; a < 4; ++a) {
+        ww += W[a * K + j] * W[a * K + k];
+        sj += W[a * K + j];
+        sk += W[a * K + k];
+      }
+      M[j * K + k] = c * (ww + sj * sk);
+    }
 }
 
 }  // namespace emc::kernels

@@ -40,14 +40,17 @@ struct Monitors {
   }
 };
 
-/// Adds the element's contribution; X: reference coordinates, u, V at t_n.
+/// Adds the element's contribution; X: reference coordinates, u, V at t_n. moved: the element
+/// has massless nodes (docs/THEORY.md §6.8): its kinetic energy, momenta and mass moment come
+/// from the moved mass (fem::Discretization::monitors), its mass, elastic and potential energy
+/// from here.
 KOKKOS_INLINE_FUNCTION void monitors_tet4(const double X[4][3], const double G[4][3], double Ve,
                                           const Lame& m, double rho, const double grav[3],
                                           const double u[4][3], const double V[4][3], Monitors& out,
-                                          int massless = 0) {
-  double p[4][3], M[4][4];
-  mass_times(rho, Ve, massless, V, p);
-  if (massless) mass_matrix(rho, Ve, massless, M);  // its row sums, for the centre of mass
+                                          bool moved = false) {
+  double p[4][3] = {};
+  if (!moved) mass_times(rho, Ve, V, p);
+  const double row = moved ? 0.0 : 0.25 * rho * Ve;  // sum_B M_AB
   out.mass += rho * Ve;
   for (int a = 0; a < 4; ++a) {
     const double x[3] = {X[a][0] + u[a][0], X[a][1] + u[a][1], X[a][2] + u[a][2]};
@@ -55,8 +58,7 @@ KOKKOS_INLINE_FUNCTION void monitors_tet4(const double X[4][3], const double G[4
       out.kinetic += 0.5 * V[a][i] * p[a][i];
       out.potential -= rho * Ve * grav[i] / 4.0 * u[a][i];
       out.L[i] += p[a][i];
-      // sum_B M_AB = rho V_e / 4 without massless nodes
-      out.moment[i] += (massless ? M[a][0] + M[a][1] + M[a][2] + M[a][3] : 0.25 * rho * Ve) * x[i];
+      out.moment[i] += row * x[i];
     }
     out.J[0] += x[1] * p[a][2] - x[2] * p[a][1];
     out.J[1] += x[2] * p[a][0] - x[0] * p[a][2];

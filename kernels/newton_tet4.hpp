@@ -23,16 +23,20 @@ struct ElementState {
 /// "Constants of the code, measured"), and through the inertia, (2/dt^2) sum_B M_AB |u_B|
 /// weighted 1e-2 (ten times the noise of rounding u_{n+1}; it outgrows the inertia term's own
 /// size after about 100 steps from the start, as |u| / |u_{n+1} - u_n| grows with the steps).
+/// moved: the element has massless nodes (docs/THEORY.md §6.8), its mass term is assembled with
+/// the moved mass (fem::Discretization) and left out here.
 KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m, double rho,
                                         const double grav[3], Integrator integ, double dt,
                                         const ElementState& s, double r[12], double (*A)[12],
-                                        double* scale, int massless = 0) {
+                                        double* scale, bool moved = false) {
   em_tet4(G, Ve, m, integ, s.u0, s.u1, r, A);  // r = f_int for now
-  double du[4][3], Mdu[4][3], MV[4][3];
+  double du[4][3], Mdu[4][3] = {}, MV[4][3] = {};
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) du[a][i] = s.u1[a][i] - s.u0[a][i];
-  mass_times(rho, Ve, massless, du, Mdu);
-  mass_times(rho, Ve, massless, s.V0, MV);
+  if (!moved) {
+    mass_times(rho, Ve, du, Mdu);
+    mass_times(rho, Ve, s.V0, MV);
+  }
   const double c2 = 2.0 / (dt * dt), c1 = 2.0 / dt;
   double gnorm[4], ug = 0;
   for (int a = 0; a < 4; ++a) {
@@ -56,12 +60,10 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
                            kernels::fabs(fint) + kernels::fabs(fext) + stiff * gnorm[a] +
                            1e-2 * c2 * Mua[a][i];
     }
-  if (A == nullptr) return;
-  double M[4][4];
-  mass_matrix(rho, Ve, massless, M);
+  if (A == nullptr || moved) return;
   for (int a = 0; a < 4; ++a)
     for (int b = 0; b < 4; ++b) {
-      const double mab = c2 * M[a][b];
+      const double mab = c2 * mass_ab(rho, Ve, a, b);
       for (int i = 0; i < 3; ++i) A[3 * a + i][3 * b + i] += mab;
     }
 }

@@ -192,7 +192,7 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
   sim->model = fem::build_model(P, std::move(meshes), opt.input);
   auto pairs = contact::build_pairs(P, sim->model, opt.input);
-  contact::mark_massless_slaves(pairs, sim->model);  // before the element data are built
+  contact::mark_massless_slaves(pairs, sim->model, opt.input);  // before the element data are built
   sim->disc = std::make_unique<fem::Discretization>(sim->model, comm);
   const auto& disc = *sim->disc;
   sim->contact = std::make_unique<contact::Contact>(disc, std::move(pairs));

@@ -3,6 +3,7 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
+#include <limits>
 #include <set>
 
 #include "emcontact/contact/law.hpp"
@@ -81,7 +82,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     fN = contact_.normal_forces(*g, x0, x1, trial);
     int n_state = 0;  // docs/THEORY.md §11.4: the return map (stick <-> slip)
     {
-      const LawState s{contact_, constraints_.index(), x0, x1, {}};
+      const LawState s{contact_, constraints_.index(), x0, x1, {}, constraints_.matrix()};
       for (const Law* law : contact_.laws()) {
         n_state += law->settle(s, trial, *g);
         law->activate(s, fresh, *g);
@@ -170,10 +171,12 @@ void ActiveSetLoop::accept(Positions x0, Positions x1, const Vector& g, std::vec
   out.stats.active = contact_.global_count(static_cast<int>(trial.size()));
   out.stats.reactivated = contact_.global_count(out.stats.reactivated);
   contact_.gap_range(x1, trial, out.stats.gap_min, out.stats.gap_max);
-  double fmin = 0, gmin = 0;
-  for (double f : fN) fmin = std::min(fmin, f);  // every node active at the accepted solve
+  // §6.5: the smallest f_N (> 0 compressive, < 0 tensile) of every node active at the accepted
+  // solve, those released at the end of the step included; 0 when none is active
+  double fmin = std::numeric_limits<double>::infinity(), gmin = fmin;
+  for (double f : fN) fmin = std::min(fmin, f);
   Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_MIN, 1, &fmin, &gmin);
-  out.stats.normal_force_min = gmin;
+  out.stats.normal_force_min = out.stats.active > 0 ? gmin : 0.0;
 }
 
 }  // namespace emc::contact

@@ -77,6 +77,7 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, Vector& g
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: Newton iterates");
   Teuchos::TimeMonitor tm(*timer);  // beta, and the rows that follow the iterate
   roundoff_ = 0;
+  A_ = &A;
   if (!iterate_dependent_) {  // P is fixed during the step, beta follows A (eq. 44)
     if (dummy_graph_.get() != A.getCrsGraph().get()) {  // a new set (or a new matrix)
       dummy_diagonal_ = diagonal_offsets(A, dummy_dofs_);

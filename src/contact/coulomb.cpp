@@ -74,6 +74,23 @@ std::vector<kernels::CoulombState> states(const LawState& s, const std::vector<A
   return std::vector<kernels::CoulombState>(h.data(), h.data() + h.extent(0));
 }
 
+/// docs/THEORY.md §11.4: a slip below a few ulps of the master's facet size is no slip (a sliding
+/// entry with it returns to stick)
+double vanishing_slip(const Pair& p) {
+  return 64 * kernels::epsilon() * p.edge;
+}
+
+/// The tangential force that slides an entry by the vanishing slip at most: its stiffness (the
+/// mean diagonal entry of the Newton matrix at the slave's dofs, which no neighbour's give
+/// softens) times vanishing_slip. A sticking entry outside the cone by less would slide by less
+/// than that and return to stick at once, with nothing moved (docs/THEORY.md §11.4).
+double slip_force(const LawState& s, const Active& a) {
+  if (!s.A) return 0.0;
+  double beta = 0;
+  for (int c = 0; c < 3; ++c) beta += diagonal_entry(*s.A, fem::dof_gid(a.slave, c)) / 3;
+  return beta * vanishing_slip(s.contact.pairs()[a.pair]);
+}
+
 /// A sliding entry returns to stick at the CPP of x_{s,n} on its facet at t_n (§4.1: the frozen
 /// offset is then normal); after kMaxReturns returns in a step it sticks to the step's end.
 void stick_at_start(const LawState& s, std::vector<Active>& active,
@@ -108,8 +125,10 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
     if (!a.slip) {
       const double ft =
           std::sqrt(c.trial[0] * c.trial[0] + c.trial[1] * c.trial[1] + c.trial[2] * c.trial[2]);
-      // out of the cone (beyond its round-off) and not returned in this step: slide
-      if (a.returns >= kMaxReturns || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9))) {
+      // out of the cone (beyond its round-off, and by more than the force of a slip that would
+      // vanish) and not returned in this step: slide
+      if (a.returns >= kMaxReturns || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9)) ||
+          !(ft - mu * c.fN > slip_force(s, a))) {
         if (c.fN > 0 && mu > 0) cone_ = std::max(cone_, ft / (mu * c.fN));
         continue;
       }
@@ -121,8 +140,8 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
     const double along = c.sT[0] * a.dir[0] + c.sT[1] * a.dir[1] + c.sT[2] * a.dir[2];
     // the slip vanished (below a few ulps of the facet's size), turned back, or goes along the
     // friction force (its work < 0: the converged state of a node that sticks, §11.4): stick
-    if (mu > 0 && (c.slip <= 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge ||
-                   along < 0 || !(slip_->slip_work(a.slave) > 0))) {
+    if (mu > 0 && (c.slip <= vanishing_slip(s.contact.pairs()[a.pair]) || along < 0 ||
+                   !(slip_->slip_work(a.slave) > 0))) {
       back.push_back(where[k]);
       ++changed;
       continue;
@@ -144,7 +163,7 @@ void Coulomb::activate(const LawState& s, std::vector<Active>& fresh, const Vect
   const auto st = states(s, entries, g);
   for (std::size_t k = 0; k < entries.size(); ++k) {
     Active& a = fresh[where[k]];
-    if (!(st[k].slip > 64 * kernels::epsilon() * s.contact.pairs()[a.pair].edge)) continue;
+    if (!(st[k].slip > vanishing_slip(s.contact.pairs()[a.pair]))) continue;
     a.slip = true;
     for (int i = 0; i < 3; ++i) a.dir[i] = st[k].sT[i] / st[k].slip;
   }

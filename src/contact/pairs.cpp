@@ -189,12 +189,27 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
   return pairs;
 }
 
-void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model) {
+void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model,
+                          const std::string& file) {
   for (const auto& p : pairs) {
     if (!p.massless_slave) continue;
     model.massless.resize(model.num_nodes(), 0);
     for (int s : p.slaves) model.massless[s] = 1;
   }
+  const int bad = fem::fit_massless_nodes(model);  // docs/THEORY.md §6.8
+  if (bad < 0) return;
+  for (const auto& p : pairs)
+    if (p.massless_slave && std::binary_search(p.slaves.begin(), p.slaves.end(), bad)) {
+      std::string body;
+      for (const auto& b : model.bodies)
+        if (!b.rigid && bad >= b.node_begin && bad < b.node_end) body = b.name;
+      throw InputError(file + ": Contact/" + p.name + "/massless slave: the nodes of body \"" +
+                       body + "\" off its slave surface do not span 3D around slave node " +
+                       std::to_string(bad + 1) +
+                       ", so its mass cannot be moved onto them keeping the body's centre of "
+                       "mass and inertia; allowed: a slave surface with nodes behind it "
+                       "(body/surface) or a finer mesh");
+    }
 }
 
 }  // namespace emc::contact

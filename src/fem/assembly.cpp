@@ -48,7 +48,8 @@ struct TetNewton {
       for (int p = 0; p < 12; ++p)
         for (int q = 0; q < 12; ++q) Ae[p][q] = 0;
     kernels::newton_tet4(Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, integ, dt, st, re,
-                         want_matrix ? Ae : nullptr, want_scale ? se : nullptr, ev.massless(k));
+                         want_matrix ? Ae : nullptr, want_scale ? se : nullptr,
+                         ev.massless(k) != 0);
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) {
         const int row = 3 * ev.node_lid(k, a) + i;
@@ -112,13 +113,17 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
       info.min_detF = all[2 * p];
       info.worst_tet = static_cast<long long>(all[2 * p + 1]);
     }
-  if (want_matrix) A->endAssembly();
+  if (want_matrix) {
+    if (moved_) add_moved_mass(A->getLocalMatrixDevice(), 2.0 / (dt * dt));  // §6.8
+    A->endAssembly();
+  }
   r.putScalar(0.0);
   r.doExport(ro, *exporter_, Tpetra::ADD);
   if (want_scale) {
     scale->putScalar(0.0);
     scale->doExport(so, *exporter_, Tpetra::ADD);
   }
+  if (moved_) moved_mass_residual(u0, V0, u1, dt, r, scale);  // docs/THEORY.md §6.8
   return info;
 }
 
@@ -170,9 +175,10 @@ kernels::Monitors Discretization::monitors(const Vector& u, const Vector& V) con
         ev.gather(vV, k, Vk);
         const double gk[3] = {g0, g1, g2};
         kernels::monitors_tet4(xk, Gk, ev.Ve(k), ev.lame(k), ev.rho(k), gk, uk, Vk, m,
-                               ev.massless(k));
+                               ev.massless(k) != 0);
       },
       sum);
+  if (moved_) add_moved_monitors(u, V, sum);
   double local[13] = {sum.kinetic,   sum.elastic,   sum.potential, sum.L[0], sum.L[1],
                       sum.L[2],      sum.J[0],      sum.J[1],      sum.J[2], sum.mass,
                       sum.moment[0], sum.moment[1], sum.moment[2]};

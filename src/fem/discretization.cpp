@@ -17,6 +17,7 @@ Discretization::Discretization(const Model& model, RCP<const Comm> comm)
   part_ = partition(model_, comm_->getRank(), comm_->getSize());
   build_maps();
   build_element_data();
+  build_moved_mass();
   build_graph();
   const auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ev_.node_lid);
   colouring_ =
@@ -114,9 +115,18 @@ void Discretization::build_graph() {
   for (const auto& p : pairs) ++start[p.first + 1];
   for (int n = 0; n < nn; ++n) start[n + 1] += start[n];
 
+  // docs/THEORY.md §6.8: the moved mass's columns of my owned rows, beyond the element graph's
+  const auto moved_columns = [&](int n) -> const std::vector<int>* {
+    if (!moved_) return nullptr;
+    const auto it = moved_->columns.find(static_cast<int>(overlap_->getGlobalElement(3 * n) / 3));
+    return it == moved_->columns.end() ? nullptr : &it->second;
+  };
   Kokkos::DualView<std::size_t*, Node::device_type> count("emc::row_count", 3 * nn);
-  for (int n = 0; n < nn; ++n)
-    for (int c = 0; c < 3; ++c) count.h_view(3 * n + c) = 3 * (start[n + 1] - start[n]);
+  for (int n = 0; n < nn; ++n) {
+    const auto* extra = moved_columns(n);
+    const std::size_t cols = start[n + 1] - start[n] + (extra ? extra->size() : 0);
+    for (int c = 0; c < 3; ++c) count.h_view(3 * n + c) = 3 * cols;
+  }
   count.modify_host();
   count.sync_device();
   graph_ = rcp(new FEGraph(owned_, overlap_, count));
@@ -128,6 +138,11 @@ void Discretization::build_graph() {
       const GO node = overlap_->getGlobalElement(3 * pairs[k].second) / 3;
       for (int c = 0; c < 3; ++c) cols.push_back(dof_gid(node, c));
     }
+    if (const auto* extra = moved_columns(n))
+      for (int m : *extra)
+        for (int c = 0; c < 3; ++c) cols.push_back(dof_gid(m, c));
+    std::sort(cols.begin(), cols.end());
+    cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
     const GO node = overlap_->getGlobalElement(3 * n) / 3;
     for (int c = 0; c < 3; ++c)
       graph_->insertGlobalIndices(dof_gid(node, c), Teuchos::ArrayView<const GO>(cols));

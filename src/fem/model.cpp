@@ -4,7 +4,6 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 
 #include "emcontact/error.hpp"
-#include "kernels/mass_tet4.hpp"
 #include "kernels/tet4.hpp"
 
 namespace emc::fem {
@@ -114,6 +113,7 @@ int massless_mask(const Model& m, int e) {
   return mask;
 }
 
+// docs/THEORY.md §6.8: the moved mass has the same first moment (its T reproduces affine fields)
 std::array<double, 3> centre_of_mass(const Model& m, int b) {
   double vol = 0;
   std::array<double, 3> c{};
@@ -123,15 +123,7 @@ std::array<double, 3> centre_of_mass(const Model& m, int b) {
       for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
     const double v = kernels::tet_volume(x);
     vol += v;
-    const int massless = massless_mask(m, e);  // §6.8: the centre of the mass's row sums
-    if (massless == 0) {
-      for (int i = 0; i < 3; ++i) c[i] += v * 0.25 * (x[0][i] + x[1][i] + x[2][i] + x[3][i]);
-      continue;
-    }
-    double M[4][4];
-    kernels::mass_matrix(1.0, v, massless, M);
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) c[i] += (M[a][0] + M[a][1] + M[a][2] + M[a][3]) * x[a][i];
+    for (int i = 0; i < 3; ++i) c[i] += v * 0.25 * (x[0][i] + x[1][i] + x[2][i] + x[3][i]);
   }
   for (int i = 0; i < 3; ++i) c[i] /= vol;
   return c;

@@ -30,6 +30,8 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   void before_reduce(const Vector& u0, const Vector& u1, Vector& g, const Matrix& A) override;
   void after_update(const Vector& u0, Vector& u1) override;
   double residual_roundoff() const override { return roundoff_; }
+  /// The Newton matrix of the last iterate (null before the first).
+  const Matrix* matrix() const { return A_; }
   bool abandon(int iteration, double r, double r0) override;
 
  private:
@@ -48,6 +50,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   Positions x0_;                                ///< contact nodes at t_n
   ActiveIndex index_;                           ///< every rank's active entries (chains)
   double roundoff_ = 0;                         ///< LawRows::roundoff at the last iterate
+  const Matrix* A_ = nullptr;                   ///< the Newton matrix of the last iterate
 
   LawState state(Positions x1) const;
   void subtract_loads(const std::vector<std::pair<GO, double>>& load, Vector& g) const;

@@ -22,6 +22,9 @@ struct LawState {
   const ActiveIndex& index;
   Positions x0, x1;
   Positions::HostMirror xh;  ///< at n+1/2 (frictionless chains)
+  /// The Newton matrix of the last solve (the return map's slip resolution, docs/THEORY.md
+  /// §11.4), or null.
+  const Matrix* A = nullptr;
 };
 
 /// The elimination's rows a law contributes.

@@ -41,8 +41,11 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
                               const std::string& file);
 
 /// docs/THEORY.md §6.8: marks the slave nodes of the pairs with `massless slave` in
-/// model.massless (left empty when no pair asks for it).
-void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model);
+/// model.massless (left empty when no pair asks for it) and fits each one's velocity over the
+/// massive nodes around it (fem::fit_massless_nodes); throws InputError naming `file` and the
+/// pair when a body's massive nodes cannot carry its slave nodes' mass.
+void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model,
+                          const std::string& file);
 
 /// Current positions of every geometry node: X + u for deformable nodes (u: all 3 N
 /// displacements, replicated), rigid_X for the rigid ones.

@@ -3,6 +3,8 @@
 // dofs, the FE graph (built once), per-element geometry in Kokkos views, and the assembly
 // driver that launches the element kernels and scatters into a Tpetra::FECrsMatrix.
 #include <Teuchos_RCP.hpp>
+#include <map>
+#include <vector>
 
 #include "emcontact/fem/colouring.hpp"
 #include "emcontact/fem/model.hpp"
@@ -79,7 +81,7 @@ class Discretization {
   AssemblyInfo assemble(const Vector& u0, const Vector& V0, const Vector& u1, double dt,
                         FEMatrix* A, Vector& r, Vector* scale) const;
 
-  /// Mv = M v with the consistent mass matrix (docs/THEORY.md §1.3); owned vectors.
+  /// Mv = M v with the mass matrix (docs/THEORY.md §1.3; with massless nodes, §6.8); owned vectors.
   void apply_mass(const Vector& v, Vector& Mv) const;
 
   /// Monitored quantities of (u, V) summed over all ranks (docs/THEORY.md §1.9, eq. 23-24).
@@ -100,7 +102,24 @@ class Discretization {
   Colouring colouring_;
   mutable Kokkos::View<int* [12][12], ExecSpace> offsets_;  ///< element entries in the values
 
+  /// docs/THEORY.md §6.8: the mass of the elements with massless nodes, M' = sum_e T_e^T M_e T_e,
+  /// on my owned rows (a scalar times I_3 per node pair); those elements' kernels leave it out.
+  struct MovedMass {
+    Teuchos::RCP<Matrix> M, absM;             ///< M' and its entries' absolute values (the scale)
+    Teuchos::RCP<Vector> row_sums;            ///< M' 1 (the centre of mass)
+    std::map<int, std::vector<int>> columns;  ///< per owned node row, its node columns
+    Kokkos::View<int*, ExecSpace> offsets;    ///< M's entries in the Newton matrix's values
+  };
+  Teuchos::RCP<MovedMass> moved_;  ///< null without massless nodes
+
   void build_offsets(const FEMatrix::local_matrix_device_type& lcl) const;
+  void build_moved_mass();
+  void add_moved_mass(const FEMatrix::local_matrix_device_type& lcl, double c) const;
+  /// r += c2 M' (u1 - u0) - c1 M' V0, scale += |M'| (|c2 (u1 - u0)| + |c1 V0|) (owned vectors).
+  void moved_mass_residual(const Vector& u0, const Vector& V0, const Vector& u1, double dt,
+                           Vector& r, Vector* scale) const;
+  /// Adds my owned rows' kinetic energy, L, J and mass moment of the moved mass to m.
+  void add_moved_monitors(const Vector& u, const Vector& V, kernels::Monitors& m) const;
 
   void build_maps();
   void build_element_data();

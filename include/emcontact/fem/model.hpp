@@ -25,15 +25,28 @@ struct Body {
   int rigid_begin = 0;
 };
 
+/// docs/THEORY.md §6.8: the velocity of each massless node as an affine combination of massive
+/// nodes of its body, v_c = sum_j w_cj v_j with sum_j w_cj = 1 and sum_j w_cj X_j = X_c (so that
+/// every affine field, a rigid motion among them, is reproduced), in CSR form.
+struct MasslessFit {
+  std::vector<int> node;       ///< the massless nodes, ascending
+  std::vector<int> start;      ///< node k's supports: support[start[k] .. start[k + 1])
+  std::vector<int> support;    ///< massive nodes
+  std::vector<double> weight;  ///< w_cj, one per support
+  /// the index of node n in `node`, or -1 when n is not massless
+  int find(int n) const;
+};
+
 struct Model {
   std::vector<double> X;         ///< reference coordinates, 3 per global node
   std::vector<int> tets;         ///< 4 global node ids per tet
   std::vector<int> body_of_tet;  ///< body index per tet
   std::vector<Body> bodies;
   std::vector<char> fixed;  ///< per global node: displacement prescribed to zero
-  /// per global node (or empty): its mass is moved to the other nodes of its elements
+  /// per global node (or empty): its mass is moved onto massive nodes of its body
   /// (docs/THEORY.md §6.8; the slave surfaces of pairs with `massless slave = true`)
   std::vector<char> massless;
+  MasslessFit massless_fit;     ///< the massless nodes' affine fits (fit_massless_nodes)
   std::vector<double> rigid_X;  ///< nodes of the rigid surface bodies, 3 each
   std::array<double, 3> gravity{};
   kernels::Integrator integrator = kernels::Integrator::energy_momentum;
@@ -52,9 +65,22 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
 /// mass (docs/THEORY.md §1.3 consistent mass: the volume-weighted centroid of its tets).
 std::vector<double> initial_velocity(const Model& m);
 
-/// Centre of mass of body b in the reference configuration.
+/// Centre of mass of body b in the reference configuration (the consistent mass's, which the
+/// moved mass of docs/THEORY.md §6.8 keeps).
 std::array<double, 3> centre_of_mass(const Model& m, int b);
 /// docs/THEORY.md §6.8: bit a set when node a of tet e is massless (0 without massless nodes).
 int massless_mask(const Model& m, int e);
+
+/// docs/THEORY.md §6.8: fills m.massless_fit from m.massless. Returns -1, or a massless node
+/// whose body has no massive nodes around it that span 3D (no affine fit exists).
+int fit_massless_nodes(Model& m);
+
+/// docs/THEORY.md §6.8: the element's M'_e = T_e^T M_e T_e on its supports (`nodes`, ascending
+/// global ids; `M` row-major, nodes.size() squared) for an element with massless nodes.
+void moved_element_mass(const Model& m, int e, std::vector<int>& nodes, std::vector<double>& M);
+
+/// The row sums of the mass matrix per global node, M 1 (one component; docs/THEORY.md §1.3 and,
+/// with massless nodes, §6.8): sum_n (row sum)_n V_n is the linear momentum of a field V.
+std::vector<double> mass_row_sums(const Model& m);
 
 }  // namespace emc::fem

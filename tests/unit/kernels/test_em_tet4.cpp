@@ -3,8 +3,10 @@
 // the internal forces, consistent mass.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "kernels/em_tet4.hpp"
 #include "kernels/monitors.hpp"
@@ -44,7 +46,7 @@ class Integrators : public ::testing::TestWithParam<k::Integrator> {};
 
 /// |A - the central finite-difference Jacobian of newton_tet4's residual in u1| / |A|.
 double jacobian_error(const Element& e, double rho, const double grav[3], double dt,
-                      const k::ElementState& s, int massless, const double A[12][12]) {
+                      const k::ElementState& s, bool moved, const double A[12][12]) {
   const double h = 1e-6;
   double diff[12][12];
   for (int c = 0; c < 12; ++c) {
@@ -53,9 +55,9 @@ double jacobian_error(const Element& e, double rho, const double grav[3], double
     m.u1[c / 3][c % 3] -= h;
     double rp[12], rm[12];
     k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, p, rp, nullptr,
-                   nullptr, massless);
+                   nullptr, moved);
     k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, m, rm, nullptr,
-                   nullptr, massless);
+                   nullptr, moved);
     for (int q = 0; q < 12; ++q) diff[q][c] = A[q][c] - (rp[q] - rm[q]) / (2 * h);
   }
   return frob(diff) / frob(A);
@@ -214,7 +216,7 @@ TEST(NewtonTet4, MassAndJacobian) {
   const double grav[3] = {0.1, -0.2, -9.81}, dt = 0.05, rho = 7.0;
   double r[12], A[12][12] = {}, scale[12];
   k::newton_tet4(e.G, e.Ve, kMat, rho, grav, k::Integrator::energy_momentum, dt, s, r, A, scale);
-  EXPECT_LT(jacobian_error(e, rho, grav, dt, s, 0, A), 1e-6);
+  EXPECT_LT(jacobian_error(e, rho, grav, dt, s, false, A), 1e-6);
   for (int q = 0; q < 12; ++q) EXPECT_GE(scale[q], std::fabs(r[q]));
 }
 
@@ -272,65 +274,87 @@ TEST(Monitors, RigidTranslation) {
   EXPECT_NEAR(m.J[2], mass * (xc[0] * V[0][1] - xc[1] * V[0][0]), 1e-14);
 }
 
-// docs/THEORY.md §6.8, massless nodes (every pattern of 1 to 3 of the 4): M' is symmetric with
-// zero rows at the massless nodes, keeps the total mass, is positive definite on the massive
-// nodes (Cholesky of that block), mass_times applies it, a rigid translation keeps m v and
-// 1/2 m v^2, and the Newton kernel's matrix is still the derivative of its residual.
-TEST(NewtonTet4, MasslessNodesKeepTheMass) {
+// docs/THEORY.md §6.8, massless nodes (every pattern of 1 to 4 of the 4, each massless node's
+// velocity the barycentric combination of four support points around the element that gives its
+// position): M' = T^T M_e T is symmetric positive semi-definite, and its moments up to the second
+// (phi^T M' psi for phi, psi in 1, x, y, z at the supports) are the element's own, so that a
+// rigid velocity has the element's m v and kinetic energy. An element with massless nodes leaves
+// its mass to the moved mass: the Newton kernel's residual and matrix carry no inertia then, and
+// its matrix is still the derivative of its residual.
+TEST(NewtonTet4, MovedMassKeepsTheMoments) {
   Element e = make_element();
   const double rho = 7.0, m = rho * e.Ve;
-  for (int mask = 1; mask < 15; ++mask) {
-    double M[4][4];
-    k::mass_matrix(rho, e.Ve, mask, M);
-    double total = 0;
+  const double P[4][3] = {{-0.5, -0.4, -0.3}, {1.6, -0.2, 0.1}, {0.1, 1.5, -0.2}, {0.3, 0.2, 1.7}};
+  double Pg[4][3];
+  const double vol = k::tet_gradients(P, Pg);
+  ASSERT_GT(vol, 0);
+  for (int mask = 1; mask < 16; ++mask) {
+    std::vector<std::array<double, 3>> Y;  // the supports: massive element nodes, then P
     for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) {
-        total += M[a][b];
-        EXPECT_EQ(M[a][b], M[b][a]) << "mask " << mask;
-        if ((mask >> a) & 1) EXPECT_EQ(M[a][b], 0.0) << "mask " << mask;
+      if (!((mask >> a) & 1)) Y.push_back({e.X[a][0], e.X[a][1], e.X[a][2]});
+    const int nh = static_cast<int>(Y.size()), K = nh + 4;
+    for (const auto& p : P) Y.push_back({p[0], p[1], p[2]});
+    std::vector<double> W(4 * K, 0.0), M(K * K);
+    for (int a = 0, h = 0; a < 4; ++a) {
+      if (!((mask >> a) & 1)) {
+        W[a * K + h++] = 1.0;
+        continue;
       }
-    EXPECT_NEAR(total, m, 1e-14 * m) << "mask " << mask;
-    int heavy[4], nh = 0;  // Cholesky of the massive block
-    for (int a = 0; a < 4; ++a)
-      if (!((mask >> a) & 1)) heavy[nh++] = a;
-    double L[4][4] = {};
-    for (int i = 0; i < nh; ++i)
-      for (int j = 0; j <= i; ++j) {
-        double s = M[heavy[i]][heavy[j]];
-        for (int q = 0; q < j; ++q) s -= L[i][q] * L[j][q];
-        if (i == j) {
-          ASSERT_GT(s, 1e-3 * m) << "mask " << mask;
-          L[i][i] = std::sqrt(s);
-        } else {
-          L[i][j] = s / L[j][j];
-        }
+      for (int j = 0; j < 4; ++j) {  // barycentric coordinate j of X_a in P
+        double w = 0.25;
+        for (int i = 0; i < 3; ++i)
+          w += Pg[j][i] * (e.X[a][i] - 0.25 * (P[0][i] + P[1][i] + P[2][i] + P[3][i]));
+        W[a * K + nh + j] = w;
       }
+    }
+    k::moved_mass(rho, e.Ve, W.data(), K, M.data());
+    for (int j = 0; j < K; ++j)
+      for (int q = 0; q < K; ++q) EXPECT_EQ(M[j * K + q], M[q * K + j]) << "mask " << mask;
     std::mt19937 rng(mask);
-    double v[4][3], p[4][3];
-    random_u(rng, 1.0, v);
-    k::mass_times(rho, e.Ve, mask, v, p);
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) {
-        double q = 0;
-        for (int b = 0; b < 4; ++b) q += M[a][b] * v[b][i];
-        EXPECT_NEAR(p[a][i], q, 1e-15 * m) << "mask " << mask;
+    std::uniform_real_distribution<double> d(-1, 1);
+    for (int t = 0; t < 20; ++t) {  // v^T M' v >= 0
+      std::vector<double> v(K);
+      for (auto& x : v) x = d(rng);
+      double q = 0;
+      for (int j = 0; j < K; ++j)
+        for (int l = 0; l < K; ++l) q += v[j] * M[j * K + l] * v[l];
+      EXPECT_GE(q, -1e-14 * m) << "mask " << mask;
+    }
+    for (int p = 0; p < 4; ++p)  // phi_p = 1, x, y, z
+      for (int q = 0; q < 4; ++q) {
+        const auto phi = [](int p, const double* x) { return p == 0 ? 1.0 : x[p - 1]; };
+        double moved = 0, own = 0;
+        for (int j = 0; j < K; ++j)
+          for (int l = 0; l < K; ++l)
+            moved += phi(p, Y[j].data()) * M[j * K + l] * phi(q, Y[l].data());
+        for (int a = 0; a < 4; ++a)
+          for (int b = 0; b < 4; ++b)
+            own += phi(p, e.X[a]) * k::mass_ab(rho, e.Ve, a, b) * phi(q, e.X[b]);
+        EXPECT_NEAR(moved, own, 1e-13 * m * 4) << "mask " << mask << " moment " << p << q;
       }
-    const double u[4][3] = {}, grav[3] = {0, 0, 0};
-    double V[4][3];
-    for (int a = 0; a < 4; ++a) V[a][0] = 1.0, V[a][1] = -2.0, V[a][2] = 0.5;
-    k::Monitors mon;
-    k::monitors_tet4(e.X, e.G, e.Ve, kMat, rho, grav, u, V, mon, mask);
-    EXPECT_NEAR(mon.kinetic, 0.5 * m * 5.25, 1e-14 * m);
-    EXPECT_NEAR(mon.L[1], -2.0 * m, 1e-14 * m);
-
-    k::ElementState s;
-    random_u(rng, 0.2, s.u0);
-    random_u(rng, 0.5, s.V0);
-    random_u(rng, 0.2, s.u1);
-    const double g[3] = {0.1, -0.2, -9.81}, dt = 0.05;
-    double r[12], A[12][12] = {};
-    k::newton_tet4(e.G, e.Ve, kMat, rho, g, k::Integrator::energy_momentum, dt, s, r, A, nullptr,
-                   mask);
-    EXPECT_LT(jacobian_error(e, rho, g, dt, s, mask, A), 1e-6) << "mask " << mask;
   }
+  k::ElementState s;
+  std::mt19937 rng(3);
+  random_u(rng, 0.2, s.u0);
+  random_u(rng, 0.5, s.V0);
+  random_u(rng, 0.2, s.u1);
+  const double g[3] = {0.1, -0.2, -9.81}, dt = 0.05, zero[3] = {0, 0, 0};
+  double r[12], A[12][12] = {}, f[12], K0[12][12] = {};
+  k::newton_tet4(e.G, e.Ve, kMat, rho, g, k::Integrator::energy_momentum, dt, s, r, A, nullptr,
+                 true);
+  k::em_tet4(e.G, e.Ve, kMat, k::Integrator::energy_momentum, s.u0, s.u1, f, K0);
+  for (int p = 0; p < 12; ++p) {
+    EXPECT_NEAR(r[p], f[p] - rho * e.Ve * g[p % 3] / 4, 1e-12 * (std::fabs(f[p]) + m));
+    for (int q = 0; q < 12; ++q) EXPECT_EQ(A[p][q], K0[p][q]);
+  }
+  EXPECT_LT(jacobian_error(e, rho, zero, dt, s, true, A), 1e-6);
+  const double u[4][3] = {};
+  double V[4][3];
+  for (int a = 0; a < 4; ++a) V[a][0] = 1.0, V[a][1] = -2.0, V[a][2] = 0.5;
+  k::Monitors mon;
+  k::monitors_tet4(e.X, e.G, e.Ve, kMat, rho, zero, u, V, mon, true);
+  EXPECT_EQ(mon.kinetic, 0.0);
+  EXPECT_EQ(mon.L[1], 0.0);
+  EXPECT_EQ(mon.moment[2], 0.0);
+  EXPECT_NEAR(mon.mass, m, 1e-15 * m);
 }
