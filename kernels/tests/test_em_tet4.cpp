@@ -257,7 +257,9 @@ TEST(NewtonTet4, MasslessNodesKeepTheMass) {
       for (int b = 0; b < 4; ++b) {
         total += M[a][b];
         EXPECT_EQ(M[a][b], M[b][a]) << "mask " << mask;
-        if ((mask >> a) & 1) EXPECT_EQ(M[a][b], 0.0) << "mask " << mask;
+        if ((mask >> a) & 1) {
+          EXPECT_EQ(M[a][b], 0.0) << "mask " << mask;
+        }
       }
     EXPECT_NEAR(total, m, 1e-14 * m) << "mask " << mask;
     int heavy[4], nh = 0;  // Cholesky of the massive block
