@@ -199,7 +199,7 @@ CellLists<MemorySpace> cell_lists(const ExecutionSpace& space, const GridShape& 
   Kokkos::View<int*, MemorySpace> count("emc::grid_count", cells);
   Kokkos::parallel_for(
       "emcontact::contact::grid_count", range(space, box.extent(0)), KOKKOS_LAMBDA(const int f) {
-        for_each_cell(s, box, f, [&](int c) { Kokkos::atomic_increment(&count(c)); });
+        for_each_cell(s, box, f, [&](int c) { Kokkos::atomic_add(&count(c), 1); });
       });
   CellLists<MemorySpace> l;
   l.start = Kokkos::View<int*, MemorySpace>(

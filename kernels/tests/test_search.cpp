@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include "kernels/search.hpp"
@@ -87,8 +88,20 @@ void expect_same(const k::Hit& a, const k::Hit& b, bool bitwise, int q) {
   }
 }
 
+/// A summary of for_each_candidate at a point: the candidates' count and a sum over them in
+/// their order (a functor, host and device alike).
+template <class Grid>
+struct CandidateSum {
+  const Grid& g;
+  double count = 0, sum = 0;
+  KOKKOS_INLINE_FUNCTION void operator()(const k::Hit& h, double out) {
+    count += 1;
+    sum += h.gap * (h.facet + 1) + out + g.metric(h.facet).f.n[2];
+  }
+};
+
 /// In a kernel over the points q of y: locate(y_q), locate(y_q, current, 1e-3) and a summary of
-/// for_each_candidate (count, a sum over the candidates in their order).
+/// for_each_candidate (CandidateSum).
 template <class E, class Grid, class Y, class Hits, class Cand>
 void kernel_queries(const E& space, const Grid& grid, const Y& y, const Hits& hits,
                     const Cand& cand) {
@@ -99,13 +112,10 @@ void kernel_queries(const E& space, const Grid& grid, const Y& y, const Hits& hi
         const double p[3] = {y(q, 0), y(q, 1), y(q, 2)};
         hits(q, 0) = g.locate(p);
         hits(q, 1) = g.locate(p, q % 7 == 0 ? -1 : (37 * q) % g.num_facets(), 1e-3);
-        double count = 0, sum = 0;
-        g.for_each_candidate(p, [&](const k::Hit& h, double out) {
-          count += 1;
-          sum += h.gap * (h.facet + 1) + out + g.metric(h.facet).f.n[2];
-        });
-        cand(q, 0) = count;
-        cand(q, 1) = sum;
+        CandidateSum<Grid> c{g};
+        g.for_each_candidate(p, c);
+        cand(q, 0) = c.count;
+        cand(q, 1) = c.sum;
       });
 }
 
@@ -201,17 +211,14 @@ TYPED_TEST(Search, QueriesInKernelMatchReference) {
     expect_same(hh(q, 0), ref.locate(p), t::bitwise<E>(), q);
     expect_same(hh(q, 1), ref.locate(p, q % 7 == 0 ? -1 : (37 * q) % ref.num_facets(), 1e-3),
                 t::bitwise<E>(), q);
-    double count = 0, sum = 0;
-    ref.for_each_candidate(p, [&](const k::Hit& h, double out) {
-      count += 1;
-      sum += h.gap * (h.facet + 1) + out + ref.metric(h.facet).f.n[2];
-    });
-    EXPECT_EQ(ch(q, 0), count) << "query " << q;
+    CandidateSum<std::decay_t<decltype(ref)>> c{ref};
+    ref.for_each_candidate(p, c);
+    EXPECT_EQ(ch(q, 0), c.count) << "query " << q;
     if (t::bitwise<E>())
-      EXPECT_EQ(ch(q, 1), sum) << "query " << q;
+      EXPECT_EQ(ch(q, 1), c.sum) << "query " << q;
     else
-      EXPECT_NEAR(ch(q, 1), sum, 1e-12 * count) << "query " << q;
-    with_candidates += count > 0;
+      EXPECT_NEAR(ch(q, 1), c.sum, 1e-12 * c.count) << "query " << q;
+    with_candidates += c.count > 0;
   }
   EXPECT_GT(with_candidates, 1000);
 }
