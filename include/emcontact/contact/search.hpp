@@ -22,3 +22,19 @@ using CellLists = kernels::CellLists<GridMemorySpace>;
 using FacetGrid = kernels::FacetGrid<GridMemorySpace>;
 
 }  // namespace emc::contact
+
+// The grid's build and batch query on the solver's execution space are compiled once, in
+// src/contact/search.cpp.
+namespace emc::kernels {
+extern template FacetGrid<contact::GridMemorySpace>::FacetGrid(
+    const ExecSpace&, const FacetGrid<contact::GridMemorySpace>::FacetsView&,
+    const FacetGrid<contact::GridMemorySpace>::PointsView&, double);
+extern template FacetGrid<contact::GridMemorySpace>::FacetGrid(
+    const ExecSpace&, const std::vector<std::array<int, 3>>&, const std::vector<double>&, double);
+extern template void FacetGrid<contact::GridMemorySpace>::locate_all(
+    const ExecSpace&, const FacetGrid<contact::GridMemorySpace>::PointsView&,
+    const FacetGrid<contact::GridMemorySpace>::HitsView&) const;
+extern template void FacetGrid<contact::GridMemorySpace>::locate_all(const ExecSpace&,
+                                                                     const double*, std::size_t,
+                                                                     std::vector<Hit>&) const;
+}  // namespace emc::kernels
