@@ -5,9 +5,13 @@
 // added into a CRS matrix (docs/THEORY.md §1.1, §1.4). Nodal sums are atomic adds unless the
 // execution space runs one thread (Serial), where they are plain adds in element order: bit for
 // bit a host loop over the elements; on a threaded backend the order of a node's contributions,
-// hence their sum's last bits, varies from run to run.
+// hence their sum's last bits, varies from run to run. With a TetColouring the loops run colour
+// by colour with plain adds: the same bits on every host backend and number of threads.
 #include <Kokkos_Core.hpp>
+#include <cstdint>
+#include <stdexcept>
 #include <type_traits>
+#include <vector>
 
 #include "kernels/crs.hpp"
 #include "kernels/em_tet4.hpp"
@@ -96,6 +100,79 @@ TetMesh<MemorySpace>::TetMesh(const ExecutionSpace& space, const Tetrahedra<Memo
   min_volume = tet4_detail::geometry(space, tets, X, G, Ve);
 }
 
+/// The tets in chunks of consecutive ids (tets chunk j * chunk .. (j + 1) * chunk - 1, which a
+/// thread runs in order: near in memory when the mesh is numbered along a curve), the chunks
+/// in colours, no two chunks of a colour sharing a node: colour c is the chunks
+/// chunks(start[c]) .. chunks(start[c + 1] - 1), ascending. A loop per colour adds into the nodes
+/// with plain adds in a fixed order (colour by colour, then tet by tet) whatever the threads:
+/// the same bits on every host backend and thread count, and no atomic operations (on a CPU a
+/// compare-and-swap loop per double). For CPUs; on a GPU the atomic loops fit.
+template <class MemorySpace>
+struct TetColouring {
+  Kokkos::View<int*, MemorySpace> chunks;
+  std::vector<int> start;  ///< on the host: the loops' bounds
+  int chunk = 1, num_tets = 0;
+
+  TetColouring() = default;
+  /// Greedy colouring on the host, chunk by chunk: the lowest colour that no chunk holding one
+  /// of its nodes has yet (at most 256 colours).
+  template <class ExecutionSpace>
+  TetColouring(const ExecutionSpace& space, const Tetrahedra<MemorySpace>& tets, int num_nodes,
+               int chunk = 64);
+  int colours() const { return start.empty() ? 0 : static_cast<int>(start.size()) - 1; }
+  /// The tets in the loops' order (colour by colour, chunk by chunk, tet by tet), on the host.
+  std::vector<int> order() const;
+};
+
+template <class MemorySpace>
+template <class ExecutionSpace>
+TetColouring<MemorySpace>::TetColouring(const ExecutionSpace& space,
+                                        const Tetrahedra<MemorySpace>& t, int num_nodes, int size)
+    : chunk(size), num_tets(static_cast<int>(t.extent(0))) {
+  check_access<ExecutionSpace, MemorySpace>();
+  if (chunk < 1) throw std::invalid_argument("TetColouring: chunk < 1");
+  constexpr int words = 4;  // 256 colours
+  space.fence();
+  const auto th = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t);
+  const int nc = (num_tets + chunk - 1) / chunk;
+  std::vector<std::uint64_t> used(words * std::size_t(num_nodes), 0);
+  std::vector<int> colour(nc);
+  int colours = 0;
+  for (int j = 0; j < nc; ++j) {
+    const int first = j * chunk, last = first + chunk < num_tets ? first + chunk : num_tets;
+    std::uint64_t taken[words] = {};
+    for (int k = first; k < last; ++k)
+      for (int a = 0; a < 4; ++a)
+        for (int w = 0; w < words; ++w) taken[w] |= used[words * std::size_t(th(k, a)) + w];
+    int c = -1;
+    for (int b = 0; b < 64 * words && c < 0; ++b)
+      if (!((taken[b / 64] >> (b % 64)) & 1)) c = b;
+    if (c < 0) throw std::runtime_error("TetColouring: more than 256 colours");
+    for (int k = first; k < last; ++k)
+      for (int a = 0; a < 4; ++a) used[words * std::size_t(th(k, a)) + c / 64] |= 1ull << (c % 64);
+    colour[j] = c;
+    colours = c + 1 > colours ? c + 1 : colours;
+  }
+  start.assign(colours + 1, 0);
+  for (int j = 0; j < nc; ++j) ++start[colour[j] + 1];
+  for (int c = 0; c < colours; ++c) start[c + 1] += start[c];
+  chunks = Kokkos::View<int*, MemorySpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::tet_colours"), nc);
+  auto h = Kokkos::create_mirror_view(chunks);
+  std::vector<int> next(start.begin(), start.end() - (colours ? 1 : 0));
+  for (int j = 0; j < nc; ++j) h(next[colour[j]]++) = j;
+  Kokkos::deep_copy(chunks, h);
+}
+
+template <class MemorySpace>
+std::vector<int> TetColouring<MemorySpace>::order() const {
+  const auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), chunks);
+  std::vector<int> out;
+  for (std::size_t i = 0; i < h.extent(0); ++i)
+    for (int k = h(i) * chunk; k < (h(i) + 1) * chunk && k < num_tets; ++k) out.push_back(k);
+  return out;
+}
+
 namespace tet4_detail {
 
 /// Tet k's G, and its nodes' values of u (rows of 3).
@@ -114,31 +191,94 @@ KOKKOS_INLINE_FUNCTION void element(const TetMesh<MemorySpace>& mesh, int k, con
 
 }  // namespace tet4_detail
 
+namespace tet4_detail {
+
+/// One tet's energy-momentum force added into its nodes' f.
+template <class MemorySpace>
+struct Force {
+  TetMesh<MemorySpace> m;
+  Lame lm;
+  Integrator integ;
+  Points<MemorySpace> u0, u1;
+  Vectors3<MemorySpace> f;
+  template <bool Atomic>
+  KOKKOS_INLINE_FUNCTION void element(const int k) const {
+    double G[4][3], e0[4][3], e1[4][3], fe[12];
+    tet4_detail::element(m, k, u0, u1, G, e0, e1);
+    em_tet4(G, m.Ve(k), lm, integ, e0, e1, fe, nullptr);
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i) scatter_add<Atomic>(f(m.tets(k, a), i), fe[3 * a + i]);
+  }
+};
+
+/// The same force and its exact tangent added into the CRS values through the block positions.
+template <class MemorySpace>
+struct Tangent {
+  Force<MemorySpace> force;
+  Kokkos::View<int*, MemorySpace> row_map;
+  Kokkos::View<double*, MemorySpace> values;
+  Kokkos::View<int* [4][4], Kokkos::LayoutRight, MemorySpace> block;
+  template <bool Atomic>
+  KOKKOS_INLINE_FUNCTION void element(const int k) const {
+    const TetMesh<MemorySpace>& m = force.m;
+    double G[4][3], e0[4][3], e1[4][3], fe[12], Ke[12][12];
+    tet4_detail::element(m, k, force.u0, force.u1, G, e0, e1);
+    em_tet4(G, m.Ve(k), force.lm, force.integ, e0, e1, fe, Ke);
+    for (int a = 0; a < 4; ++a) {
+      const int n = m.tets(k, a);
+      for (int i = 0; i < 3; ++i) {
+        scatter_add<Atomic>(force.f(n, i), fe[3 * a + i]);
+        const int row = row_map(3 * n + i);
+        for (int b = 0; b < 4; ++b)
+          for (int j = 0; j < 3; ++j)
+            scatter_add<Atomic>(values(row + block(k, a, b) + j), Ke[3 * a + i][3 * b + j]);
+      }
+    }
+  }
+};
+
+/// body.element<Atomic>(k) for every tet: without a colouring one loop over the tets (atomic
+/// adds, plain on one thread), with one a loop per colour (plain adds).
+template <class ExecutionSpace, class MemorySpace, class Body>
+void for_each_tet(const ExecutionSpace& space, const char* label, const Body& body, int ne,
+                  const TetColouring<MemorySpace>* colouring) {
+  if (!colouring) {
+    constexpr bool atomic = !one_thread<ExecutionSpace>();
+    Kokkos::parallel_for(
+        label, range(space, ne), KOKKOS_LAMBDA(const int k) { body.template element<atomic>(k); });
+    return;
+  }
+  const auto chunks = colouring->chunks;
+  const int size = colouring->chunk;
+  for (int c = 0; c < colouring->colours(); ++c)
+    Kokkos::parallel_for(
+        label,
+        Kokkos::RangePolicy<ExecutionSpace>(space, colouring->start[c], colouring->start[c + 1]),
+        KOKKOS_LAMBDA(const int i) {
+          const int first = chunks(i) * size, last = first + size < ne ? first + size : ne;
+          for (int k = first; k < last; ++k) body.template element<false>(k);
+        });
+}
+
+}  // namespace tet4_detail
+
 /// f(n, i) += the energy-momentum internal force of every tet at node n (em_tet4 without its
 /// tangent, docs/THEORY.md §1.4 eq. 18; u0 = u_n, u1 = u_{n+1}; one material) in a labelled
-/// loop over the tets ("emcontact::fem::em_tet4_force").
+/// loop over the tets ("emcontact::fem::em_tet4_force"), or a loop per colour of colouring.
 template <class ExecutionSpace, class MemorySpace>
 void em_tet4_forces(const ExecutionSpace& space, const TetMesh<MemorySpace>& mesh,
                     const Lame& material, Integrator integ,
                     const NonDeduced<Points<MemorySpace>>& u0,
                     const NonDeduced<Points<MemorySpace>>& u1,
-                    const NonDeduced<Vectors3<MemorySpace>>& f) {
+                    const NonDeduced<Vectors3<MemorySpace>>& f,
+                    const NonDeduced<TetColouring<MemorySpace>>* colouring = nullptr) {
   check_access<ExecutionSpace, MemorySpace>();
-  constexpr bool atomic = !one_thread<ExecutionSpace>();
-  const TetMesh<MemorySpace> m = mesh;
-  const Lame lm = material;
-  Kokkos::parallel_for(
-      "emcontact::fem::em_tet4_force", range(space, m.size()), KOKKOS_LAMBDA(const int k) {
-        double G[4][3], e0[4][3], e1[4][3], fe[12];
-        tet4_detail::element(m, k, u0, u1, G, e0, e1);
-        em_tet4(G, m.Ve(k), lm, integ, e0, e1, fe, nullptr);
-        for (int a = 0; a < 4; ++a)
-          for (int i = 0; i < 3; ++i) scatter_add<atomic>(f(m.tets(k, a), i), fe[3 * a + i]);
-      });
+  const tet4_detail::Force<MemorySpace> body{mesh, material, integ, u0, u1, f};
+  tet4_detail::for_each_tet(space, "emcontact::fem::em_tet4_force", body, mesh.size(), colouring);
 }
 
 /// The same force into f and its exact tangent d f / d u_{n+1} (em_tet4's 12 x 12 element
-/// matrices) added into the values of K, a pattern of these tets (tet_pattern), through its
+/// matrices) added into the values of K, the pattern of these tets (TetPattern), through its
 /// block positions: no row search ("emcontact::fem::em_tet4").
 template <class ExecutionSpace, class MemorySpace>
 void em_tet4_assemble(const ExecutionSpace& space, const TetMesh<MemorySpace>& mesh,
@@ -146,30 +286,12 @@ void em_tet4_assemble(const ExecutionSpace& space, const TetMesh<MemorySpace>& m
                       const NonDeduced<Points<MemorySpace>>& u0,
                       const NonDeduced<Points<MemorySpace>>& u1,
                       const NonDeduced<Vectors3<MemorySpace>>& f,
-                      const NonDeduced<TetPattern<MemorySpace>>& K) {
+                      const NonDeduced<TetPattern<MemorySpace>>& K,
+                      const NonDeduced<TetColouring<MemorySpace>>* colouring = nullptr) {
   check_access<ExecutionSpace, MemorySpace>();
-  constexpr bool atomic = !one_thread<ExecutionSpace>();
-  const TetMesh<MemorySpace> m = mesh;
-  const Lame lm = material;
-  const auto row_map = K.matrix.row_map;
-  const auto values = K.matrix.values;
-  const auto block = K.block;
-  Kokkos::parallel_for(
-      "emcontact::fem::em_tet4", range(space, m.size()), KOKKOS_LAMBDA(const int k) {
-        double G[4][3], e0[4][3], e1[4][3], fe[12], Ke[12][12];
-        tet4_detail::element(m, k, u0, u1, G, e0, e1);
-        em_tet4(G, m.Ve(k), lm, integ, e0, e1, fe, Ke);
-        for (int a = 0; a < 4; ++a) {
-          const int n = m.tets(k, a);
-          for (int i = 0; i < 3; ++i) {
-            scatter_add<atomic>(f(n, i), fe[3 * a + i]);
-            const int row = row_map(3 * n + i);
-            for (int b = 0; b < 4; ++b)
-              for (int j = 0; j < 3; ++j)
-                scatter_add<atomic>(values(row + block(k, a, b) + j), Ke[3 * a + i][3 * b + j]);
-          }
-        }
-      });
+  const tet4_detail::Tangent<MemorySpace> body{
+      {mesh, material, integ, u0, u1, f}, K.matrix.row_map, K.matrix.values, K.block};
+  tet4_detail::for_each_tet(space, "emcontact::fem::em_tet4", body, mesh.size(), colouring);
 }
 
 }  // namespace emc::kernels

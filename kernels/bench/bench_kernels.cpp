@@ -1,11 +1,13 @@
 // Element-kernel benchmarks of the kernel library (Google Benchmark), on every enabled execution
-// space (the name's second part); rates are per process (OpenMP: all its threads).
+// space (the name's second part); rates are per process and wall-clock second (OpenMP: all
+// its threads), the CPU column the process's (all threads).
 //   BM_EmTet4                  energy-momentum force + exact 12x12 tangent + mass of one
 //                              element (newton_tet4, one core, the kernel alone)
 //   BM_Tet4Force/<space>/n     the force-only loop over a box of 6 n^3 tets (em_tet4_forces;
 //                              the nodal forces zeroed, then summed: atomic adds when threaded)
 //   BM_Tet4Tangent/<space>/n   force + exact tangent added into the CRS matrix of the tets'
 //                              pattern (em_tet4_assemble; forces and values zeroed first)
+//   .../<space>/coloured/n     the same colour by colour (TetColouring: plain adds)
 #include <benchmark/benchmark.h>
 
 #include <Kokkos_Core.hpp>
@@ -76,31 +78,35 @@ void tet_counters(benchmark::State& state, int tets) {
 }
 
 template <class E>
-void tet4_force(benchmark::State& state) {
+void tet4_force(benchmark::State& state, bool coloured) {
   BoxOn<E> b(static_cast<int>(state.range(0)));
   const E space;
+  const k::TetColouring<typename E::memory_space> col(space, b.mesh.tets, b.box.num_nodes());
   for (auto _ : state) {
     Kokkos::deep_copy(space, b.f, 0.0);
     k::em_tet4_forces(space, b.mesh, k::lame(1e6, 0.3), k::Integrator::energy_momentum, b.u0, b.u1,
-                      b.f);
+                      b.f, coloured ? &col : nullptr);
     space.fence();
   }
   tet_counters(state, b.box.num_tets());
+  state.counters["colours"] = coloured ? col.colours() : 0;
 }
 
 template <class E>
-void tet4_tangent(benchmark::State& state) {
+void tet4_tangent(benchmark::State& state, bool coloured) {
   BoxOn<E> b(static_cast<int>(state.range(0)));
   const E space;
   const k::TetPattern<typename E::memory_space> K(space, b.mesh.tets, b.box.num_nodes());
+  const k::TetColouring<typename E::memory_space> col(space, b.mesh.tets, b.box.num_nodes());
   for (auto _ : state) {
     Kokkos::deep_copy(space, b.f, 0.0);
     Kokkos::deep_copy(space, K.matrix.values, 0.0);
     k::em_tet4_assemble(space, b.mesh, k::lame(1e6, 0.3), k::Integrator::energy_momentum, b.u0,
-                        b.u1, b.f, K);
+                        b.u1, b.f, K, coloured ? &col : nullptr);
     space.fence();
   }
   tet_counters(state, b.box.num_tets());
+  state.counters["colours"] = coloured ? col.colours() : 0;
   state.counters["nnz"] = static_cast<double>(K.matrix.values.extent(0));
 }
 
@@ -108,16 +114,25 @@ struct Register {
   template <class E>
   static void on() {
     const std::string s = E::name();
-    benchmark::RegisterBenchmark(("BM_Tet4Force/" + s).c_str(), tet4_force<E>)
-        ->Arg(20)
-        ->Arg(40)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
-    benchmark::RegisterBenchmark(("BM_Tet4Tangent/" + s).c_str(), tet4_tangent<E>)
-        ->Arg(20)
-        ->Arg(40)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
+    for (const bool coloured : {false, true}) {
+      const std::string how = coloured ? "/coloured" : "";
+      benchmark::RegisterBenchmark(
+          ("BM_Tet4Force/" + s + how).c_str(),
+          [coloured](benchmark::State& st) { tet4_force<E>(st, coloured); })
+          ->Arg(20)
+          ->Arg(40)
+          ->Unit(benchmark::kMillisecond)
+          ->MeasureProcessCPUTime()
+          ->UseRealTime();
+      benchmark::RegisterBenchmark(
+          ("BM_Tet4Tangent/" + s + how).c_str(),
+          [coloured](benchmark::State& st) { tet4_tangent<E>(st, coloured); })
+          ->Arg(20)
+          ->Arg(40)
+          ->Unit(benchmark::kMillisecond)
+          ->MeasureProcessCPUTime()
+          ->UseRealTime();
+    }
   }
 };
 

@@ -2,7 +2,7 @@
 // grid of a bumpy surface's 2 n^2 facets (n = 224: 100352 facets; n = 708: 1002528) and queries
 // near it, max(100k, facets / 2) of them (about one per surface node). Host loops run on one
 // core; <space> benchmarks on every enabled execution space (rates per process: OpenMP, all its
-// threads).
+// threads; wall-clock rates, the CPU column the process's).
 //   BM_ContactSearch/n                   grid built from host containers, then the random
 //                                        queries one by one
 //   BM_ContactGridBuild/<space>/n        the parallel build alone, from Views
@@ -197,7 +197,7 @@ void locate_all(benchmark::State& state) {
 
 /// The surfaces of the <space> benchmarks: 100k facets and 1M.
 void sizes(benchmark::internal::Benchmark* b) {
-  b->Arg(224)->Arg(708)->Unit(benchmark::kMillisecond)->UseRealTime();
+  b->Arg(224)->Arg(708)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 }
 
 struct Register {

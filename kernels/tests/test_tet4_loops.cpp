@@ -3,7 +3,8 @@
 // the reference geometry and the CRS pattern bit for bit (deterministic); the nodal sums of the
 // force and of the tangent bit for bit on one thread (Serial: plain adds in element order) and,
 // on a threaded backend (atomic adds in any order), within the bound of a reordered sum:
-// |s' - s| <= 2 (c - 1) eps sum |t| for c terms t.
+// |s' - s| <= 2 (c - 1) eps sum |t| for c terms t; colour by colour (plain adds) bit for bit
+// the host loop in colour order on every host backend.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -129,10 +130,13 @@ TYPED_TEST(TetLoops, PatternIsTheTetsCouplings) {
                       3 * box.tets[4 * e + b] + d);
 }
 
-/// The host loop's nodal forces (and, if K, the tangent's entries by (row, column)).
-void host_assembly(const Problem& p, std::vector<Sum>& f, std::map<std::pair<int, int>, Sum>* K) {
+/// The host loop's nodal forces (and, if K, the tangent's entries by (row, column)), over the
+/// tets in element order or in `order`.
+void host_assembly(const Problem& p, std::vector<Sum>& f, std::map<std::pair<int, int>, Sum>* K,
+                   const std::vector<int>* order = nullptr) {
   f.assign(p.box.X.size(), Sum{});
-  for (int e = 0; e < p.box.num_tets(); ++e) {
+  for (int t = 0; t < p.box.num_tets(); ++t) {
+    const int e = order ? (*order)[t] : t;
     double G[4][3], a0[4][3], a1[4][3], fe[12], Ke[12][12];
     const double Ve = p.element(e, G, a0, a1);
     k::em_tet4(G, Ve, p.material, p.integ, a0, a1, fe, K ? Ke : nullptr);
@@ -213,6 +217,85 @@ TYPED_TEST(TetLoops, TangentMatchesHostLoop) {
     }
   EXPECT_EQ(seen, K.size());
   EXPECT_GE(most, 20);  // diagonal blocks of inner nodes: sums over 24 tets
+}
+
+}  // namespace
+
+namespace {
+
+// Every tet in exactly one chunk of consecutive tets, every chunk in one colour, ascending within
+// it; no two chunks of a colour share a node.
+TYPED_TEST(TetLoops, ColouringIsValid) {
+  using E = TypeParam;
+  const auto& box = this->p.box;
+  for (const int size : {1, 8}) {
+    const k::TetColouring<typename E::memory_space> col(E(), this->tets(), box.num_nodes(), size);
+    const auto chunks = t::on_host(col.chunks);
+    ASSERT_EQ(col.start.front(), 0);
+    ASSERT_EQ(col.start.back(), (box.num_tets() + size - 1) / size);
+    EXPECT_LE(col.colours(), 64);
+    EXPECT_GE(col.colours(), size == 1 ? 24 : 4);  // the 24 tets around an inner node
+    std::vector<int> seen(box.num_tets(), 0);
+    for (int c = 0; c < col.colours(); ++c) {
+      std::set<int> nodes;
+      for (int i = col.start[c]; i < col.start[c + 1]; ++i) {
+        if (i > col.start[c]) {
+          ASSERT_LT(chunks(i - 1), chunks(i));
+        }
+        std::set<int> mine;
+        for (int e = chunks(i) * size; e < (chunks(i) + 1) * size && e < box.num_tets(); ++e) {
+          ++seen[e];
+          for (int a = 0; a < 4; ++a) mine.insert(box.tets[4 * e + a]);
+        }
+        for (int n : mine) ASSERT_TRUE(nodes.insert(n).second) << "colour " << c << " node " << n;
+      }
+    }
+    for (int e = 0; e < box.num_tets(); ++e) ASSERT_EQ(seen[e], 1) << "tet " << e;
+    EXPECT_EQ(col.order().size(), static_cast<std::size_t>(box.num_tets()));
+  }
+}
+
+// Colour by colour with plain adds: forces and tangent the host loop's sums in the colouring's
+// order, bit for bit on every host backend (a device: within the fused-product tolerance).
+TYPED_TEST(TetLoops, ColouredLoopsMatchHostLoopInColourOrder) {
+  using E = TypeParam;
+  using M = typename E::memory_space;
+  const auto& box = this->p.box;
+  const k::TetMesh<M> mesh(E(), this->tets(), this->points(box.X));
+  const k::TetPattern<M> pattern(E(), this->tets(), box.num_nodes());
+  const k::TetColouring<M> col(E(), this->tets(), box.num_nodes(), 8);
+  k::Vectors3<M> f("test::f", box.num_nodes()), g("test::g", box.num_nodes());
+  k::em_tet4_forces(E(), mesh, this->p.material, this->p.integ, this->points(this->p.u0),
+                    this->points(this->p.u1), g, &col);
+  k::em_tet4_assemble(E(), mesh, this->p.material, this->p.integ, this->points(this->p.u0),
+                      this->points(this->p.u1), f, pattern, &col);
+  const std::vector<int> order = col.order();
+  std::vector<Sum> want;
+  std::map<std::pair<int, int>, Sum> K;
+  host_assembly(this->p, want, &K, &order);
+  const auto fh = t::on_host(f);
+  const auto gh = t::on_host(g);
+  const bool exact = t::bitwise<E>();
+  for (std::size_t r = 0; r < want.size(); ++r) {
+    if (exact) {
+      ASSERT_EQ(fh(r / 3, r % 3), want[r].value) << "dof " << r;
+      ASSERT_EQ(gh(r / 3, r % 3), want[r].value) << "dof " << r;
+    } else {
+      ASSERT_NEAR(fh(r / 3, r % 3), want[r].value, want[r].tolerance(false));
+      ASSERT_NEAR(gh(r / 3, r % 3), want[r].value, want[r].tolerance(false));
+    }
+  }
+  const auto row_map = t::on_host(pattern.matrix.row_map);
+  const auto entries = t::on_host(pattern.matrix.entries);
+  const auto values = t::on_host(pattern.matrix.values);
+  for (int r = 0; r < pattern.matrix.num_rows(); ++r)
+    for (int q = row_map(r); q < row_map(r + 1); ++q) {
+      const Sum& s = K.at({r, entries(q)});
+      if (exact)
+        ASSERT_EQ(values(q), s.value) << "entry (" << r << ", " << entries(q) << ")";
+      else
+        ASSERT_NEAR(values(q), s.value, s.tolerance(false));
+    }
 }
 
 }  // namespace
