@@ -2,8 +2,8 @@
 // The math functions the kernels use, callable on host and device alike (one place to adapt for
 // a device backend instead of Kokkos::Experimental, whose names moved between Kokkos releases).
 #include <Kokkos_Core.hpp>
+#include <cfloat>
 #include <cmath>
-#include <limits>
 
 namespace emc::kernels {
 
@@ -22,11 +22,13 @@ KOKKOS_INLINE_FUNCTION double fmin(double a, double b) {
 KOKKOS_INLINE_FUNCTION double fmax(double a, double b) {
   return a > b ? a : b;
 }
+/// +inf and the machine epsilon 2^-52 from the C macros, as Kokkos' own numeric traits (the
+/// std::numeric_limits functions are host functions, not callable in a CUDA kernel).
 KOKKOS_INLINE_FUNCTION constexpr double infinity() {
-  return std::numeric_limits<double>::infinity();
+  return HUGE_VAL;
 }
 KOKKOS_INLINE_FUNCTION constexpr double epsilon() {
-  return std::numeric_limits<double>::epsilon();
+  return DBL_EPSILON;
 }
 
 /// The index of the lowest set bit of m != 0 (a count of trailing zeros).

@@ -13,17 +13,24 @@ struct Monitors {
   double L[3] = {0, 0, 0}, J[3] = {0, 0, 0};
   double mass = 0, moment[3] = {0, 0, 0};
 
-  KOKKOS_INLINE_FUNCTION Monitors() = default;
+  Monitors() = default;
   KOKKOS_INLINE_FUNCTION Monitors& operator+=(const Monitors& o) {
     add(*this, o);
     return *this;
   }
+#if KOKKOS_VERSION < 30700  // Kokkos before 3.7 joins threaded reductions through volatile
   /// The volatile join Kokkos 3.4's threaded (OpenMP) reductions call.
-  KOKKOS_INLINE_FUNCTION void operator+=(const volatile Monitors& o) volatile { add(*this, o); }
-  /// Copies from a volatile reduction value (Kokkos 3.4's threaded reductions).
-  KOKKOS_INLINE_FUNCTION Monitors(const volatile Monitors& o) { add(*this, o); }  // 0 + o
-  KOKKOS_INLINE_FUNCTION Monitors(const Monitors&) = default;
-  KOKKOS_INLINE_FUNCTION Monitors& operator=(const Monitors&) = default;
+  KOKKOS_INLINE_FUNCTION void operator+=(const volatile Monitors& o) volatile {
+    add(*this, o);
+  }
+  /// Copies from a volatile reduction value (Kokkos 3.4's threaded reductions): 0 + o.
+  KOKKOS_INLINE_FUNCTION Monitors(const volatile Monitors& o) {
+    add(*this, o);
+  }
+#endif
+  // defaulted: host and device functions alike (CUDA ignores annotations on them)
+  Monitors(const Monitors&) = default;
+  Monitors& operator=(const Monitors&) = default;
 
  private:
   template <class A, class B>

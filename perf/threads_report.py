@@ -24,7 +24,7 @@ def assembly_rate(build, threads):
     env = dict(ENV, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND='spread', OMP_PLACES='threads')
     out = os.path.join(ROOT, 'out', 'threads_bench_%d.json' % threads)
     os.makedirs(os.path.dirname(out), exist_ok=True)
-    subprocess.run([os.path.join(build, 'bin', 'bench_kernels'), '--benchmark_filter=BM_Assembly',
+    subprocess.run([os.path.join(build, 'bin', 'bench_assembly'), '--benchmark_filter=BM_Assembly',
                     '--benchmark_min_time=1', '--benchmark_out=' + out, '--benchmark_out_format=json'],
                    env=env, check=True, capture_output=True)
     return {b['name']: b['tets_per_s'] for b in json.load(open(out))['benchmarks']}

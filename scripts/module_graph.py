@@ -6,7 +6,10 @@ fails (exit 1, one line per problem) if
   - a module includes a header of a module it does not link, or of a module above it;
   - a public header (include/emcontact/<m>/) includes a module its target links only PRIVATE;
   - a file includes <gmsh.h> or <hdf5.h> in a module that does not link emc_gmsh / emc_hdf5;
-  - a kernel (kernels/*.hpp) includes anything of emcontact's but another kernel;
+  - a file of the kernel library (kernels/: its headers, tests and benchmarks) includes
+    anything of emcontact's but the library's own ("kernels/...", or a test's or benchmark's
+    files next to it or under kernels/tests), or a third-party header other than Kokkos',
+    the standard library's, gtest's and Google Benchmark's (the library needs Kokkos alone);
   - anything includes a private header through the source root ("src/...");
   - a test, benchmark or tool includes a header that is neither public (emcontact/...,
     kernels/...) nor its own (next to it or under tests/).
@@ -18,6 +21,8 @@ import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 THIRD_PARTY = {"gmsh.h": "emc_gmsh", "hdf5.h": "emc_hdf5"}
+# What the kernel library may include in <>: Kokkos, the standard library, gtest, benchmark.
+KERNELS_SYSTEM = re.compile(r"^(Kokkos\w*\.hpp|KokkosCore\w*\.h|gtest/.*|benchmark/.*|[a-z_]+)$")
 
 
 def modules(root):
@@ -95,10 +100,7 @@ def check(root):
                     problems.append(f"{rel}: \"{h}\" in a public header: link {target} PUBLIC")
         if "emc_base" not in public and name != "base":
             problems.append(f"CMakeLists.txt: emc_{name} does not link emc_base PUBLIC")
-    for f in (root / "kernels").glob("*.hpp"):
-        for kind, h in includes(f):
-            if kind == '"' and not h.startswith("kernels/"):
-                problems.append(f"kernels/{f.name}: \"{h}\": a kernel includes only kernels")
+    problems += check_kernels(root)
     for top in ("tests", "perf", "tools"):
         for f in (root / top).rglob("*"):
             if f.suffix not in (".cpp", ".hpp"):
@@ -111,6 +113,26 @@ def check(root):
                     if not h.startswith("src/"):
                         continue
                 problems.append(f"{rel}: \"{h}\" is not a public header")
+    return problems
+
+
+def check_kernels(root):
+    """The kernel library (kernels/) includes its own headers and Kokkos only."""
+    problems = []
+    for f in sorted((root / "kernels").rglob("*")):
+        if f.suffix not in (".cpp", ".hpp"):
+            continue
+        rel = f.relative_to(root)
+        own = rel.parts[1] in ("tests", "bench")  # a test's or benchmark's own files
+        for kind, h in includes(f):
+            if kind == "<":
+                if not KERNELS_SYSTEM.match(h):
+                    problems.append(f"{rel}: <{h}>: the kernel library includes Kokkos only")
+            elif h.startswith("kernels/"):
+                if own and not (root / h).exists():
+                    problems.append(f"{rel}: \"{h}\": no such kernel")
+            elif not (own and ((f.parent / h).exists() or (root / "kernels/tests" / h).exists())):
+                problems.append(f"{rel}: \"{h}\": a kernel includes only kernels")
     return problems
 
 

@@ -1,49 +1,16 @@
-// Kernel benchmarks (perf/README.md, "Kernels"). Counters are per core: Kokkos is Serial in
+// The solver's assembly and elimination benchmarks (Tpetra; the element kernels alone are the
+// kernel library's bench_kernels, kernels/bench). Counters are per core: Kokkos is Serial in
 // Debian's Trilinos, so one process = one core.
-//   BM_EmTet4          energy-momentum force + exact 12x12 tangent of one element (kernel only)
 //   BM_Assembly        the whole assembly driver: import, kernels, scatter into the FECrsMatrix
 //   BM_Elimination     one Newton iteration's elimination: P^T A P + D, P^T g and P dq
 //                      (...NewPattern: after an active-set change; ...Rigid: the masked path)
 #include <benchmark/benchmark.h>
 
 #include <Tpetra_Core.hpp>
-#include <algorithm>
-#include <cmath>
-#include <random>
 
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/linalg/elimination.hpp"
-#include "kernels/newton_tet4.hpp"
 #include "support/box_model.hpp"
-
-namespace k = emc::kernels;
-
-static void BM_EmTet4(benchmark::State& state) {
-  double X[4][3] = {{0, 0, 0}, {1, 0.1, 0}, {0.1, 1, 0.1}, {0, 0.2, 1}}, G[4][3];
-  const double Ve = k::tet_gradients(X, G);
-  std::mt19937 rng(1);
-  std::uniform_real_distribution<double> d(-0.1, 0.1);
-  k::ElementState s;
-  for (int a = 0; a < 4; ++a)
-    for (int i = 0; i < 3; ++i) {
-      s.u0[a][i] = d(rng);
-      s.u1[a][i] = d(rng);
-      s.V0[a][i] = d(rng);
-    }
-  const double grav[3] = {0, 0, -9.81};
-  double r[12], A[12][12], sc[12];
-  for (auto _ : state) {
-    for (int p = 0; p < 12; ++p)
-      for (int q = 0; q < 12; ++q) A[p][q] = 0;
-    k::newton_tet4(G, Ve, k::lame(1e6, 0.3), 1000, grav, k::Integrator::energy_momentum, 1e-3, s, r,
-                   A, sc);
-    benchmark::DoNotOptimize(A);
-    s.u1[0][0] += 1e-12;
-  }
-  state.counters["tets_per_s"] =
-      benchmark::Counter(state.iterations(), benchmark::Counter::kIsRate);
-}
-BENCHMARK(BM_EmTet4);
 
 /// The assembly of a box of n^3 cubes (6 n^3 tets) with the scatter `how` (Solver/Assembly/
 /// scatter): BM_Assembly one loop per element colour with plain adds (the default),

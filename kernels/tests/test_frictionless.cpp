@@ -327,7 +327,9 @@ TEST(Frictionless, NewtonConvergesQuadratically) {
     EXPECT_LE(h.size(), 7u);
     // quadratic: r_{k+1} <= C r_k^2 while above round-off
     for (size_t i = 1; i + 1 < h.size(); ++i)
-      if (h[i + 1] > 1e-12) EXPECT_LT(h[i + 1], 10.0 * h[i] * h[i]) << "iteration " << i;
+      if (h[i + 1] > 1e-12) {
+        EXPECT_LT(h[i + 1], 10.0 * h[i] * h[i]) << "iteration " << i;
+      }
     // the simplified terms converge linearly (ratio ~1e-2, set by their 2e-2 relative error in
     // the matrix): far behind by the fifth residual
     ASSERT_GE(hist[1].size(), 5u);
