@@ -46,10 +46,10 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
     ug += un * gnorm[a];
   }
   const double stiff = 1e-3 * Ve * (kernels::fabs(m.lambda) + 2 * m.mu) * ug;
-  double ua[4][3], Mua[4][3];  // M |u_{n+1}|: M's entries are >= 0
+  double ua[4][3], Mua[4][3] = {};  // M |u_{n+1}|: M's entries are >= 0 (moved: M' adds it)
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) ua[a][i] = kernels::fabs(s.u1[a][i]);
-  if (scale) mass_times(rho, Ve, massless, ua, Mua);
+  if (scale && !moved) mass_times(rho, Ve, ua, Mua);
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) {
       const double fext = rho * Ve * grav[i] / 4.0;

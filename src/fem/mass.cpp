@@ -361,11 +361,13 @@ void Discretization::moved_mass_residual(const Vector& u0, const Vector& V0, con
   const double c2 = 2.0 / (dt * dt), c1 = 2.0 / dt;
   Vector w(owned_);
   w.update(c2, u1, -c2, u0, 0.0);
-  if (scale) {  // |M'| (|c2 (u1 - u0)| + |c1 V0|): what cancellation in M' w can leave
-    Vector a(owned_), b(owned_);
+  if (scale) {  // |M'| (|c2 (u1 - u0)| + |c1 V0| + 1e-2 c2 |u1|): what cancellation in M' w
+    Vector a(owned_), b(owned_);  // can leave, and the rounding of u1 through the inertia (§1.6)
     a.abs(w);
     b.abs(V0);
     a.update(c1, b, 1.0);
+    b.abs(u1);
+    a.update(1e-2 * c2, b, 1.0);
     moved_->absM->apply(a, *scale, Teuchos::NO_TRANS, 1.0, 1.0);
   }
   w.update(-c1, V0, 1.0);
