@@ -10,7 +10,7 @@
 # instantiates only <double, int, long long, OpenMP>. MueLu is left out (its explicit instantiation
 # alone takes hours on 2 cores); emcontact then builds without the MueLu preconditioner.
 # Then build emcontact against it:
-#   cmake -S . -B build-omp -G Ninja -DCMAKE_PREFIX_PATH=PREFIX -DEMC_TRILINOS_PREFIX=PREFIX && cmake --build build-omp
+#   cmake -S . -B build-omp -G Ninja -DCMAKE_PREFIX_PATH=PREFIX && cmake --build build-omp
 # and run with OMP_NUM_THREADS=N OMP_PROC_BIND=spread OMP_PLACES=threads.
 set -euo pipefail
 PREFIX=${1:-/opt/trilinos-openmp}
