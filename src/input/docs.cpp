@@ -1,4 +1,5 @@
 // Markdown documentation of the schema (inputs/README.md is generated from it).
+#include <algorithm>
 #include <sstream>
 
 #include "emcontact/input/detail.hpp"
@@ -22,6 +23,29 @@ std::string cell(const std::string& text) {
     }
   }
   return s;
+}
+
+/// Text as lines of at most 100 characters (a longer word stands alone); blank lines between
+/// paragraphs are kept.
+std::string paragraph(const std::string& text) {
+  std::string out, line, w;
+  std::size_t from = 0;
+  while (from <= text.size()) {
+    const std::size_t to = std::min(text.find("\n\n", from), text.size());
+    std::istringstream words(text.substr(from, to - from));
+    while (words >> w) {
+      if (!line.empty() && line.size() + 1 + w.size() > 100) {
+        out += line + "\n";
+        line.clear();
+      }
+      line += (line.empty() ? "" : " ") + w;
+    }
+    out += line;
+    line.clear();
+    if (to < text.size()) out += "\n\n";
+    from = to + 2;
+  }
+  return out;
 }
 
 std::string default_cell(const ParameterEntry& e) {
@@ -57,7 +81,7 @@ void document(std::ostream& os, const ParameterList& list, const std::string& pa
   const std::string rows = table(list);
   if (!rows.empty() || !doc.empty()) {
     os << std::string(level, '#') << " `" << path << "`\n\n";
-    if (!doc.empty()) os << doc << "\n\n";
+    if (!doc.empty()) os << paragraph(doc) << "\n\n";
     os << rows;
     ++level;
   }
@@ -122,7 +146,7 @@ std::string example_xml() {
 std::string schema_markdown(const Schema& schema) {
   std::ostringstream os;
   for (const auto& s : schema.sections) {
-    os << "## " << s.name << "\n\n" << s.doc << "\n\n";
+    os << "## " << s.name << "\n\n" << detail::paragraph(s.doc) << "\n\n";
     if (s.named()) {
       detail::document(os, *s.schema, s.name + "/" + s.placeholder, "", 3);
     } else {

@@ -283,7 +283,7 @@ hostile_out_of_memory_one_line() {
 # the same when an allocation fails anyway (here GMRES's Krylov basis of 400000 vectors)
 hostile_failed_allocation_one_line() {
   emc_good_input in.xml
-  expect_exit 1 bash -c "ulimit -v 1000000; exec \"$EMC\" in.xml '--set=Solver/Linear/Belos/Num Blocks=400000' '--set=Solver/Linear/max iterations=400000' --output out"
+  expect_exit 1 bash -c "ulimit -v 1000000; exec \"$EMC\" in.xml '--set=Solver/Linear/Belos/Num Blocks=100000' '--set=Solver/Linear/max iterations=100000' --output out"
   expect_err '^error: out of memory \(.*Solver/Linear/Belos.*\), with 1134 tets, 344 nodes on 1 rank\(s\)'
   expect_short_err 1
 }
@@ -372,9 +372,11 @@ hostile_unsolvable_step_names_parameters() {
   expect_err 'step 1 at t = 0 could not be solved.*; parameters that may keep the step from being solved: Bodies/block/Initial/angular velocity = \{1e6, 0, 0\} turns the body by [0-9.e+]+ rad even in the smallest step'
   expect_short_err 1
   cp "$HERE/../../inputs/tumbling_box.xml" box.xml
+  # a step so long that the inertia drowns in the stiffness' round-off: refused before the first
+  # step, naming the density and the step
   expect_exit 1 "$EMC" box.xml --set Time/dt=1e21 --set Time/end=1e22 --set Output/every=0 \
     --output out2
-  expect_err 'could not be solved.*parameters that may keep the step from being solved: Time/dt = 1e21 with Bodies/box/Material/young = 100000 and density = 1000: the elastic wave, sqrt\(young / density\) = 10 m/s, crosses c dt / h = [0-9.e+]+ elements'
+  expect_err 'parameter "Bodies/box/Material/density": .* below the round-off of its stiffness .* at Time/dt = 1e\+21'
   expect_short_err 1
 }
 

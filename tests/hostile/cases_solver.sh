@@ -170,11 +170,17 @@ hostile_newton_absolute_tolerance_above_residual_refused() {
 
 hostile_density_below_roundoff_refused() {
   cp "$HERE/../../inputs/tumbling_box.xml" in.xml
+  # within the density's physical bounds, but with the stiffest young its bounds allow
+  expect_exit_within 60 1 "$EMC" in.xml --set Time/end=0.05 \
+    --set Bodies/box/Material/density=1e-12 --set Bodies/box/Material/young=1e14 --output out
+  expect_err 'parameter "Bodies/box/Material/density": .* below the round-off of its stiffness'
+  expect_short_err 1
+  [ ! -e out ] || { echo "out/ written"; return 1; }
   local rho
-  for rho in 1e-300 4.9e-324; do
+  for rho in 1e-300 4.9e-324; do  # below the physical bounds
     expect_exit_within 60 1 "$EMC" in.xml --set Time/end=0.05 \
       --set Bodies/box/Material/density=$rho --output out
-    expect_err 'parameter "Bodies/box/Material/density": .* below the round-off of its stiffness'
+    expect_err '"Bodies/box/Material/density=.*": value .* is out of range'
     expect_short_err 1
     [ ! -e out ] || { echo "density $rho: out/ written"; return 1; }
   done
