@@ -40,8 +40,8 @@ import time
 # A normalised time may be this many times the baseline's. The calibration removes the machine's
 # speed (a memory-bound loop: the benchmarks here are memory- and cache-bound as much as
 # compute-bound); what remains on a shared machine (other processes' cache and memory traffic,
-# frequency changes, a calibration and a case that see different load) moved the ratios by up
-# to between 0.65x and 1.6x in repeated runs on the project's busy 2-core VM. 2x leaves room for that; a
+# frequency changes, a calibration and a case that see different load) put the ratios between
+# 0.65 and 1.6 in repeated runs on the project's busy 2-core VM. 2x leaves room for that; a
 # regression of 3x or more fails.
 TIME_RATIO = 2.0
 
