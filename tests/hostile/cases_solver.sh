@@ -68,7 +68,7 @@ hostile_sigterm_inside_a_long_krylov_solve_stops() {
   # one GMRES solve without preconditioner on a nearly incompressible block: up to 100000
   # iterations (minutes). Belos' status output every 100 iterations shows the solve running
   # (the solve that checks the Belos parameters at setup converges in a few).
-  run_bg in.xml --set Bodies/block/Mesh/size=0.01 --set Bodies/block/Material/poisson=0.4999999999 \
+  run_bg in.xml --set Bodies/block/Mesh/size=0.01 --set Bodies/block/Material/poisson=0.49999 \
     --set "Bodies/block/Initial/velocity={1,0,0}" --set "Bodies/block/Initial/angular velocity={0,0,5}" \
     --set "Solver/Linear/max iterations=100000" --set Solver/Linear/preconditioner=none \
     --set Solver/Linear/Belos/Verbosity=32 --set "Solver/Linear/Belos/Output Frequency=100" \
