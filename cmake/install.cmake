@@ -19,8 +19,13 @@ install(DIRECTORY include/emcontact DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} FILE
         PATTERN "*.hpp")
 install(EXPORT emcontactTargets NAMESPACE emcontact:: DESTINATION ${EMC_INSTALL_CMAKEDIR})
 
-# What the config finds again in the consumer's project (the same Trilinos packages).
-set(EMC_TRILINOS_COMPONENTS Teuchos Kokkos KokkosKernels Tpetra Belos Ifpack2 Amesos2)
+# The config finds the same Trilinos components (EMC_TRILINOS_COMPONENTS) in the consumer's
+# project, and OpenMP where Kokkos has it.
+if(EMC_KOKKOS_OPENMP)
+  set(EMC_CONFIG_OPENMP TRUE)
+else()
+  set(EMC_CONFIG_OPENMP FALSE)
+endif()
 configure_package_config_file(cmake/emcontactConfig.cmake.in
                               ${CMAKE_BINARY_DIR}/cmake/emcontactConfig.cmake
                               INSTALL_DESTINATION ${EMC_INSTALL_CMAKEDIR})
