@@ -1,5 +1,6 @@
 # `cmake --install BUILD [--prefix P]`: the emcontact binary, the public headers
-# (include/emcontact/..., include/kernels/<name>.hpp), the module libraries and the CMake package
+# (include/emcontact/..., include/kernels/<name>.hpp), the plot script Output/plot runs
+# (share/emcontact/plot_monitors.py), the module libraries and the CMake package
 # emcontact (lib/cmake/emcontact: emcontactConfig.cmake, emcontactConfigVersion.cmake and the
 # targets emcontact::core, emcontact::kernels, emcontact::emc_<module>), so that another project
 # can find_package(emcontact) (docs/developer-guide.md, "Installing and using emcontact from
@@ -10,6 +11,7 @@ set(EMC_MODULES base input mesh fem linalg contact time output app)
 list(TRANSFORM EMC_MODULES PREPEND emc_ OUTPUT_VARIABLE EMC_MODULE_TARGETS)
 
 install(TARGETS emcontact RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(PROGRAMS tools/plot_monitors.py DESTINATION ${CMAKE_INSTALL_DATADIR}/emcontact)
 install(TARGETS ${EMC_MODULE_TARGETS} emcontact_core emcontact_kernels emc_kernels emc_deps
                 emc_kokkos emc_hdf5 emc_gmsh
         EXPORT emcontactTargets

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The install test (ctest install.consumer, tests/install/CMakeLists.txt): installs the build
-# tree into a scratch prefix, checks what is there, then configures, builds and runs the project
+# tree into a scratch prefix, checks what is there, runs the installed binary (its --version and
+# the plot script it runs), then configures, builds and runs the project
 # in consumer/ against that prefix alone (find_package(emcontact), emcontact::kernels and
 # emcontact::core). Fails (exit 1) with a line naming what is wrong.
 # Usage: run_consumer.sh BUILD_DIR WORK_DIR VERSION CMAKE GENERATOR CXX [LAUNCHER]
@@ -17,8 +18,9 @@ mkdir -p "$work"
 
 libdir=$(dirname "$(find "$prefix" -name emcontactConfig.cmake -print -quit)")
 [[ $libdir != . ]] || fail "no emcontactConfig.cmake under $prefix"
-for f in bin/emcontact include/emcontact/types.hpp include/emcontact/app/run.hpp \
-  include/emcontact/contact/search.hpp include/kernels/tet4.hpp include/kernels/search.hpp; do
+for f in bin/emcontact share/emcontact/plot_monitors.py include/emcontact/types.hpp \
+  include/emcontact/app/run.hpp include/emcontact/contact/search.hpp include/kernels/tet4.hpp \
+  include/kernels/search.hpp; do
   [[ -e $prefix/$f ]] || fail "$prefix/$f was not installed"
 done
 for f in emcontactConfigVersion.cmake emcontactTargets.cmake; do
@@ -33,6 +35,15 @@ fi
 [[ -z $(find "$prefix/include" -name '*.cpp') ]] || fail "sources installed under include/"
 "$prefix/bin/emcontact" --version | grep -q "^emcontact $version " ||
   fail "$prefix/bin/emcontact --version does not print emcontact $version"
+# Output/plot runs the installed script, not the source tree's: a stand-in that fails with its
+# own message makes the run warn with the installed path and that message (and still exit 0)
+script=$prefix/share/emcontact/plot_monitors.py
+printf 'import sys\nsys.exit("the installed plot script ran")\n' > "$script"
+"$prefix/bin/emcontact" "$src/tests/hostile/good_box.xml" --output "$work/run" \
+  --set Output/plot=true > "$work/run.out" 2> "$work/run.err" || {
+  cat "$work/run.err"; fail "$prefix/bin/emcontact failed on tests/hostile/good_box.xml"; }
+grep -qF "$script: the installed plot script ran" "$work/run.err" || {
+  cat "$work/run.err"; fail "Output/plot did not run $script"; }
 
 args=(-S "$here/consumer" -B "$work/consumer" -G "$generator" -DCMAKE_BUILD_TYPE=Release
   -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_PREFIX_PATH="$prefix")
