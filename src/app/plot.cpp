@@ -79,7 +79,7 @@ std::string spawn_and_wait(std::vector<std::string> args, const output::Director
     if (errno != EINTR)
       return std::string("cannot wait for ") + argv[0] + ": " + std::strerror(errno);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-  const std::string line = last_line(err);
+  std::string line = last_line(err);
   if (!line.empty()) return line;
   if (WIFSIGNALED(status)) return std::string("killed by signal ") + strsignal(WTERMSIG(status));
   return "exit status " + std::to_string(WEXITSTATUS(status));
@@ -134,7 +134,7 @@ std::string plot_script() {
     const std::string self(exe, static_cast<std::size_t>(n));
     const std::string installed = self.substr(0, self.rfind('/') + 1) + EMC_PLOT_SCRIPT_INSTALLED;
     if (char* real = ::realpath(installed.c_str(), nullptr)) {  // without bin/..
-      const std::string script = real;
+      std::string script = real;
       std::free(real);
       if (::access(script.c_str(), R_OK) == 0) return script;
     }
