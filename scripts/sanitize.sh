@@ -36,9 +36,9 @@ fi
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build-asan
 if [ $unit = 1 ]; then
-  # the unit label's scripts (formatting, the module graph, the test policy, Python parsing)
+  # the unit label's scripts (formatting, the module graph and walls, the test policy, Python)
   # run no instrumented code: the release suite runs them
-  ctest --output-on-failure -j 2 -L unit -E '^(format|module_graph|python_scripts_parse|test_policy)$' "$@"
+  ctest --output-on-failure -j 2 -L unit -E '^(format|module_(graph|graph_refuses|walls)|python_scripts_parse|test_policy)$' "$@"
 else
   ctest --output-on-failure -j 2 "$@"
 fi

@@ -10,6 +10,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -78,7 +79,7 @@ std::string spawn_and_wait(std::vector<std::string> args, const output::Director
     if (errno != EINTR)
       return std::string("cannot wait for ") + argv[0] + ": " + std::strerror(errno);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-  const std::string line = last_line(err);
+  std::string line = last_line(err);
   if (!line.empty()) return line;
   if (WIFSIGNALED(status)) return std::string("killed by signal ") + strsignal(WTERMSIG(status));
   return "exit status " + std::to_string(WEXITSTATUS(status));
@@ -123,10 +124,28 @@ std::string plot(const output::Directory& dir, const std::string& python,
   return why;
 }
 
+/// The plot script: the one installed beside the binary (EMC_PLOT_SCRIPT_INSTALLED, relative to
+/// the binary's directory: <prefix>/share/emcontact/ after `cmake --install`), else the source
+/// tree's (EMC_PLOT_SCRIPT, for the binary of a build tree).
+std::string plot_script() {
+  char exe[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+  if (n > 0) {
+    const std::string self(exe, static_cast<std::size_t>(n));
+    const std::string installed = self.substr(0, self.rfind('/') + 1) + EMC_PLOT_SCRIPT_INSTALLED;
+    if (char* real = ::realpath(installed.c_str(), nullptr)) {  // without bin/..
+      std::string script = real;
+      std::free(real);
+      if (::access(script.c_str(), R_OK) == 0) return script;
+    }
+  }
+  return EMC_PLOT_SCRIPT;
+}
+
 }  // namespace
 
 void plot_monitors(const output::Directory& dir) {
-  const std::string python = "/usr/bin/python3", script = EMC_PLOT_SCRIPT;
+  const std::string python = "/usr/bin/python3", script = plot_script();
   const std::string why = plot(dir, python, script);
   if (!why.empty())
     std::fprintf(stderr, "warning: could not plot %s with %s %s: %s\n",
