@@ -171,7 +171,15 @@ struct DeepCrossingsOf {
       r.node = s;
     }
   }
+#if KOKKOS_VERSION < 30700  // Kokkos before 3.7 joins threaded reductions through volatile
   KOKKOS_INLINE_FUNCTION void join(volatile Deep& a, const volatile Deep& b) const {
+    join_into(a, b);
+  }
+#else
+  KOKKOS_INLINE_FUNCTION void join(Deep& a, const Deep& b) const { join_into(a, b); }
+#endif
+  template <class A, class B>
+  KOKKOS_INLINE_FUNCTION static void join_into(A& a, const B& b) {
     a.count += b.count;
     if (b.node >= 0 && (a.node < 0 || b.gap < a.gap || (b.gap == a.gap && b.node < a.node))) {
       a.gap = b.gap;
