@@ -176,7 +176,9 @@ struct DeepCrossingsOf {
     join_into(a, b);
   }
 #else
-  KOKKOS_INLINE_FUNCTION void join(Deep& a, const Deep& b) const { join_into(a, b); }
+  KOKKOS_INLINE_FUNCTION void join(Deep& a, const Deep& b) const {
+    join_into(a, b);
+  }
 #endif
   template <class A, class B>
   KOKKOS_INLINE_FUNCTION static void join_into(A& a, const B& b) {
