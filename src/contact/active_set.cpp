@@ -58,7 +58,8 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       changed = constraints_.use(&trial, std::move(index));
     }
     g = solve(changed, empty, warm, search);
-    swept = false;  // u1 moved
+    constraints_.sync(trial);  // the facets and xi Newton's iterates moved (§5)
+    swept = false;             // u1 moved
     warm = g != nullptr;
     if (!g) {
       // docs/THEORY.md §11.4: sliding entries whose slip turned back had no sliding solution:

@@ -9,6 +9,7 @@
 
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/law.hpp"
+#include "emcontact/views.hpp"
 
 namespace emc::contact {
 
@@ -80,15 +81,22 @@ double vanishing_slip(const Pair& p) {
   return 64 * kernels::epsilon() * p.edge;
 }
 
-/// The tangential force that slides an entry by the vanishing slip at most: its stiffness (the
-/// mean diagonal entry of the Newton matrix at the slave's dofs, which no neighbour's give
-/// softens) times vanishing_slip. A sticking entry outside the cone by less would slide by less
-/// than that and return to stick at once, with nothing moved (docs/THEORY.md §11.4).
-double slip_force(const LawState& s, const Active& a) {
-  if (!s.A) return 0.0;
-  double beta = 0;
-  for (int c = 0; c < 3; ++c) beta += diagonal_entry(*s.A, fem::dof_gid(a.slave, c)) / 3;
-  return beta * vanishing_slip(s.contact.pairs()[a.pair]);
+/// The tangential force that slides entry k of `entries` by the vanishing slip at most: its
+/// stiffness (the mean diagonal entry of the Newton matrix at the slave's dofs, which no
+/// neighbour's give softens; a kernel over those rows of A) times vanishing_slip. A sticking
+/// entry outside the cone by less would slide by less than that and return to stick at once,
+/// with nothing moved (docs/THEORY.md §11.4). All 0 without a matrix.
+std::vector<double> slip_forces(const LawState& s, const std::vector<Active>& entries) {
+  std::vector<double> out(entries.size(), 0.0);
+  if (!s.A || entries.empty()) return out;
+  std::vector<int> slaves;
+  for (const auto& a : entries) slaves.push_back(a.slave);
+  Values beta("emc::coulomb_beta", entries.size());
+  mean_diagonals(*s.A, to_view("emc::coulomb_slaves", slaves), beta);
+  const auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), beta);
+  for (std::size_t k = 0; k < entries.size(); ++k)
+    out[k] = bh(k) * vanishing_slip(s.contact.pairs()[entries[k].pair]);
+  return out;
 }
 
 /// A sliding entry returns to stick at the CPP of x_{s,n} on its facet at t_n (§4.1: the frozen
@@ -116,6 +124,7 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
   cone_ = 0;
   if (entries.empty()) return 0;
   const auto st = states(s, entries, g);
+  const auto slip_force = slip_forces(s, entries);
   int changed = 0;
   std::vector<std::size_t> back;
   for (std::size_t k = 0; k < entries.size(); ++k) {
@@ -128,7 +137,7 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
       // out of the cone (beyond its round-off, and by more than the force of a slip that would
       // vanish) and not returned in this step: slide
       if (a.returns >= kMaxReturns || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9)) ||
-          !(ft - mu * c.fN > slip_force(s, a))) {
+          !(ft - mu * c.fN > slip_force[k])) {
         if (c.fN > 0 && mu > 0) cone_ = std::max(cone_, ft / (mu * c.fN));
         continue;
       }

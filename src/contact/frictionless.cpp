@@ -9,6 +9,7 @@
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/law.hpp"
+#include "emcontact/contact/state.hpp"
 #include "emcontact/views.hpp"
 
 namespace emc::contact {
@@ -46,18 +47,6 @@ class Frictionless final : public Law {
   /// Coulomb: (slave, -f_T . s) of my sliding entries at the last iterate, sorted by slave
   mutable std::vector<std::pair<int, double>> work_;
 };
-
-std::vector<Active> mine(const Contact& contact, Kind own, const std::vector<Active>& active,
-                         std::vector<std::size_t>* where = nullptr) {
-  std::vector<Active> out;
-  for (std::size_t k = 0; k < active.size(); ++k)
-    if (contact.pairs()[active[k].pair].kind == own &&
-        slides(contact.pairs()[active[k].pair], active[k])) {
-      out.push_back(active[k]);
-      if (where) where->push_back(k);
-    }
-  return out;
-}
 
 /// Scatters the blocks of one slave into P, Pt and X through the chains (§3): master dof
 /// j = 3 i + c is expanded by expand_node (the dof itself if free, nothing if rigid or fixed,
@@ -125,29 +114,25 @@ void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBloc
 
 // docs/THEORY.md §5.2, §5.4: P rows du_s = N du_m + T dq, the exact right factor Pt and the
 // variation X of P^T; the slave's q dofs are its x and y dofs (dxi, deta), its z dof is the
-// dummy.
-void Frictionless::rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
+// dummy. The blocks come from the state's rows on the execution space; the chains (§3) and the
+// scatter into P's rows are a host pass (the elimination takes host rows).
+void Frictionless::rows(const LawState& s, const std::vector<Active>&, const Vector* g,
                         const Matrix* A, LawRows& out) const {
   reversed_now_ = sliding_now_ = false;
   work_.clear();
-  const auto entries = mine(s.contact, own_, active);
-  if (entries.empty() || !g || !A) return;
+  const Ints sel = s.state->sliding[static_cast<int>(own_)];
+  const int n = static_cast<int>(sel.extent(0));
+  if (n == 0 || !g || !A) return;
   sliding_now_ = own_ == Kind::coulomb;
-  const int n = static_cast<int>(entries.size());
   Kokkos::View<kernels::FrictionlessBlocks*, ExecSpace> blocks("emc::frictionless_blocks", n);
-  const Refs refs = s.contact.refs(entries);
+  const Refs refs = gather_refs(*s.state, sel);
   contact::frictionless_blocks(refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly),
                                blocks);
   auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), blocks);
   // eq. 59: beta, the mean of the slave's diagonal entries of A; Coulomb's slip weight c (§11.1)
   Values beta("emc::frictionless_beta", n);
-  auto betah = Kokkos::create_mirror_view(beta);
-  for (int k = 0; k < n; ++k) {
-    betah(k) = 0;
-    for (int c = 0; c < 3; ++c)
-      betah(k) += diagonal_entry(*A, fem::dof_gid(entries[k].slave, c)) / 3;
-  }
-  Kokkos::deep_copy(beta, betah);
+  mean_diagonals(*A, gather_slaves(*s.state, sel), beta);
+  auto betah = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), beta);
   Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips("emc::coulomb_slips",
                                                        own_ == Kind::coulomb ? n : 0);
   if (own_ == Kind::coulomb)
@@ -159,8 +144,10 @@ void Frictionless::rows(const LawState& s, const std::vector<Active>& active, co
   auto rh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), r);
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");
   Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the scatter into P's rows)
+  const auto sel_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sel);
+  const auto all = host_entries(*s.state, 0, s.state->local);
   for (int k = 0; k < n; ++k) {
-    const Active& a = entries[k];
+    const Active& a = all[sel_h(k)];
     const kernels::CoulombSlip* fr = own_ == Kind::coulomb ? &fh(k) : nullptr;
     scatter(s, a, bh(k), fr, out);
     if (fr) work_.emplace_back(a.slave, fr->work);
@@ -183,14 +170,18 @@ double Frictionless::slip_work(int slave) const {
   return it != work_.end() && it->first == slave ? it->second : 0.0;
 }
 
-/// §5 step 2 for my entries beyond the hysteresis (leaving, by pair): facet, xi, xs1 and
-/// outside move to a neighbouring facet with a valid CPP at n+1/2, if there is one.
-void switch_facets(const LawState& s, std::vector<Active>& entries, Refs refs, Positions x1,
-                   const std::map<int, std::vector<int>>& leaving, Values3 xs1,
-                   Kokkos::View<double* [2], ExecSpace> xi, Values outside) {
+/// §5 step 2 for my rows sel(k) beyond the hysteresis (leaving, by pair): facet, xi, xs1 and
+/// outside move to a neighbouring facet with a valid CPP at n+1/2, if there is one (the state's
+/// facet and its nodes in refs with it). A host pass over the leaving rows only.
+void switch_facets(const LawState& s, Ints sel, Refs refs, Positions x1,
+                   const std::map<int, std::vector<int>>& leaving, Values3 xs1, Xis xi,
+                   Values outside) {
   const auto& nodes = s.contact.nodes();
   Positions xh = nodes.new_positions("emc::xh");
   midpoint(s.x0, x1, xh);
+  const auto sel_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sel);
+  const auto slave_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.state->slave);
+  const auto facet_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.state->facet);
   for (const auto& [p, ks] : leaving) {
     const Pair& pr = s.contact.pairs()[p];
     const LocalFacets& lf = nodes.facets(p);
@@ -198,65 +189,52 @@ void switch_facets(const LawState& s, std::vector<Active>& entries, Refs refs, P
     std::vector<int> slave_k, current;
     for (int k : ks) {
       slave_k.push_back(
-          static_cast<int>(std::lower_bound(my.begin(), my.end(), entries[k].slave) - my.begin()));
-      current.push_back(lf.find(entries[k].facet));
+          static_cast<int>(std::lower_bound(my.begin(), my.end(), slave_h(sel_h(k))) - my.begin()));
+      current.push_back(lf.find(facet_h(sel_h(k))));
     }
     Kokkos::View<int*, ExecSpace> next("emc::next_facet", ks.size());
-    frictionless_switch(lf.grid(xh, pr.dmax), nodes.slaves(p), lf.nodes, refs,
-                        to_view("emc::leaving", ks), to_view("emc::slave_k", slave_k),
-                        to_view("emc::current", current), s.x0, x1, xh, entry_rule(pr), xs1, xi,
-                        outside, next);
-    auto nh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), next);
-    auto ids = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lf.id);
-    for (std::size_t j = 0; j < ks.size(); ++j)
-      if (nh(j) >= 0) entries[ks[j]].facet = ids(nh(j));
+    const Ints leaving_k = to_view("emc::leaving", ks);
+    frictionless_switch(lf.grid(xh, pr.dmax), nodes.slaves(p), lf.nodes, refs, leaving_k,
+                        to_view("emc::slave_k", slave_k), to_view("emc::current", current), s.x0,
+                        x1, xh, entry_rule(pr), xs1, xi, outside, next);
+    const Ints facet = s.state->facet;
+    const Refs state_refs = s.state->refs;
+    const auto ids = lf.id;
+    const auto facet_nodes = lf.nodes;
+    Kokkos::parallel_for(
+        "emcontact::contact::switch_facets",
+        Kokkos::RangePolicy<ExecSpace>(0, static_cast<int>(ks.size())), KOKKOS_LAMBDA(const int j) {
+          if (next(j) < 0) return;
+          const int k = sel(leaving_k(j));
+          facet(k) = ids(next(j));
+          for (int i = 0; i < 3; ++i) state_refs(k).m[i] = facet_nodes(next(j), i);
+        });
   }
 }
 
-// docs/THEORY.md §5.3 update steps 2-3 (eq. 60-64) for my frictionless slaves.
-void Frictionless::after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const {
+// docs/THEORY.md §5.3 update steps 2-3 (eq. 60-64) for my frictionless slaves, on the state.
+void Frictionless::after_update(const LawState& s, std::vector<Active>&, Vector& u1) const {
   const double tol_f = 1e-3;
-  std::vector<std::size_t> where;
-  auto entries = mine(s.contact, own_, active, &where);
-  const int n = static_cast<int>(entries.size());
+  const Ints sel = s.state->sliding[static_cast<int>(own_)];
+  const int n = static_cast<int>(sel.extent(0));
   const Positions x1 = s.contact.positions(u1);
   if (n == 0) return;
-  const auto& m = s.contact.disc_model();
   Values3 xs1("emc::frictionless_xs1", n);
-  Kokkos::View<double* [2], ExecSpace> xi("emc::frictionless_xi", n);
+  Xis xi = gather_xi(*s.state, sel);
   Values outside("emc::frictionless_outside", n);
-  auto xih = Kokkos::create_mirror_view(xi);
-  for (int k = 0; k < n; ++k)
-    for (int i = 0; i < 2; ++i) xih(k, i) = entries[k].xi[i];
-  Kokkos::deep_copy(xi, xih);
-  const Refs refs = s.contact.refs(entries);
+  const Refs refs = gather_refs(*s.state, sel);
   frictionless_projections(refs, s.x0, x1, xs1, xi, outside);
-  auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outside);
-  std::map<int, std::vector<int>> leaving;  // step 2: beyond the hysteresis, by pair
-  for (int k = 0; k < n; ++k)
-    if (oh(k) > tol_f) leaving[entries[k].pair].push_back(k);
-  if (!leaving.empty()) {
-    switch_facets(s, entries, refs, x1, leaving, xs1, xi, outside);
-    Kokkos::deep_copy(oh, outside);
+  if (count_beyond(outside, tol_f) > 0) {  // step 2: beyond the hysteresis, by pair
+    const auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), outside);
+    const auto sel_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), sel);
+    const auto pair_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.state->pair);
+    std::map<int, std::vector<int>> leaving;
+    for (int k = 0; k < n; ++k)
+      if (oh(k) > tol_f) leaving[pair_h(sel_h(k))].push_back(k);
+    switch_facets(s, sel, refs, x1, leaving, xs1, xi, outside);
   }
-  auto xsh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), xs1);
-  Kokkos::deep_copy(xih, xi);
-  auto uv = u1.getLocalViewHost(Tpetra::Access::ReadWrite);
-  const auto& map = *s.contact.disc().owned_map();
-  for (int k = 0; k < n; ++k) {
-    Active& a = entries[k];
-    const double out = oh(k);
-    const double xi_k[2] = {xih(k, 0), xih(k, 1)}, xs[3] = {xsh(k, 0), xsh(k, 1), xsh(k, 2)};
-    // kept with the extrapolated xi, up to the edge extension of activation (§6.3) so that a
-    // node is not released where it would be caught again; beyond it released at the end of
-    // the step
-    a.off = out > entry_rule(s.contact.pairs()[a.pair]).edge;
-    a.xi[0] = xi_k[0];
-    a.xi[1] = xi_k[1];
-    for (int c = 0; c < 3; ++c)
-      uv(map.getLocalElement(fem::dof_gid(a.slave, c)), 0) = xs[c] - m.X[3 * a.slave + c];
-    active[where[k]] = a;
-  }
+  store_projections(*s.state, sel, xi, outside, xs1,
+                    u1.getLocalViewDevice(Tpetra::Access::ReadWrite));
 }
 
 // docs/THEORY.md §11.4: a solve that failed while sliding entries' slip turned against their

@@ -13,6 +13,7 @@
 namespace emc::contact {
 
 class Contact;
+struct ContactState;
 
 /// What a law sees of the iterate: the active set (all ranks', for chains) and the contact
 /// nodes' positions at t_n and at the iterate (host copies; empty when the law's rows do not
@@ -25,6 +26,8 @@ struct LawState {
   /// The Newton matrix of the last solve (the return map's slip resolution, docs/THEORY.md
   /// §11.4), or null.
   const Matrix* A = nullptr;
+  /// The state of the trial set on the execution space (inside Newton), or null.
+  ContactState* state = nullptr;
 };
 
 /// The elimination's rows a law contributes.
