@@ -122,8 +122,8 @@ bool ActiveConstraints::abandon(int iteration, double r, double r0) {
   if (iteration < 4) return false;
   int stalls = 0, slides = 0;
   for (const Law* law : present_) {
-    stalls += law->stalls() ? 1 : 0;
-    slides += law->slides() ? 1 : 0;
+    stalls += state_.reversed_now[static_cast<int>(law->kind())] ? 1 : 0;
+    slides += state_.sliding_now[static_cast<int>(law->kind())] ? 1 : 0;
   }
   int flags[2] = {stalls, slides}, all[2];
   Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 2, flags, all);

@@ -71,6 +71,8 @@ void fill_local(ContactState& s, const Contact& contact, const std::vector<Activ
     edge(k) = entry_rule(p).edge;
     if (slides(p, a)) sliding[static_cast<int>(p.kind)].push_back(static_cast<int>(k));
   }
+  s.reversed = Ints("emcontact::contact::state_reversed", n);
+  s.slip_work = Values("emcontact::contact::state_slip_work", n);
   Kokkos::deep_copy(s.X, X);
   Kokkos::deep_copy(s.release_edge, edge);
   for (int l = 0; l < 3; ++l) {
@@ -229,6 +231,36 @@ void store_projections(ContactState& s, Ints sel, Xis xi, Values outside, Values
         flags(k) = outside(j) > edge(k) ? (flags(k) | flag::off) : (flags(k) & ~flag::off);
         for (int c = 0; c < 3; ++c) u(refs(k).dof[c], 0) = xs1(j, c) - X(k, c);
       });
+}
+
+int coulomb_iterate(ContactState& s, Ints sel,
+                    Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips) {
+  const Refs refs = s.refs;
+  const Values3 dir = s.dir;
+  const Ints reversed = s.reversed;
+  const Values work = s.slip_work;
+  int n = 0;
+  Kokkos::parallel_reduce(
+      "emcontact::contact::coulomb_iterate", Policy(0, static_cast<int>(sel.extent(0))),
+      KOKKOS_LAMBDA(const int j, int& c) {
+        const int k = sel(j);
+        const kernels::CoulombSlip& fr = slips(j);
+        work(k) = fr.work;
+        const double along = fr.dir[0] * dir(k, 0) + fr.dir[1] * dir(k, 1) + fr.dir[2] * dir(k, 2);
+        if (along < 0 && refs(k).mu > 0) {
+          reversed(k) = 1;
+          ++c;
+        }
+      },
+      n);
+  return n;
+}
+
+void clear_reversals(ContactState& s, Ints sel) {
+  const Ints reversed = s.reversed;
+  Kokkos::parallel_for(
+      "emcontact::contact::clear_reversals", Policy(0, static_cast<int>(sel.extent(0))),
+      KOKKOS_LAMBDA(const int j) { reversed(sel(j)) = 0; });
 }
 
 int count_beyond(Values outside, double tol) {

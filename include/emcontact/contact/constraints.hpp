@@ -26,6 +26,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   const ActiveIndex& index() const { return index_; }
   /// The trial set on the execution space, which Newton's iterates update.
   const ContactState& state() const { return state_; }
+  ContactState& state() { return state_; }
   /// After a solve: the facets, xi and off flags the iterates moved into the trial set.
   void sync(std::vector<Active>& trial) const { to_host(state_, trial); }
   /// The contact nodes at t_n (the positions at u0 of the current contact nodes), for start.

@@ -44,6 +44,17 @@ struct ContactState {
   /// (frictionless, Coulomb in slip); they do not change within a solve.
   Ints sliding[3];
 
+  /// The laws' state at Newton's iterates (docs/THEORY.md §11.4), of my rows: marked where the
+  /// slip turned against the entry's direction at an iterate of the current solve; the work
+  /// -f_T . s of the friction force at the last iterate (0 where none slides with friction).
+  Ints reversed;
+  Values slip_work;
+  /// Per law kind, at the last iterate: some slip turned back; some entry slides with friction.
+  bool reversed_now[3] = {false, false, false};
+  bool sliding_now[3] = {false, false, false};
+  /// The largest |f_T| / (mu f_N) of the sticking entries the last return map kept (§11.4).
+  double cone = 0;
+
   int size() const { return static_cast<int>(slave.extent(0)); }
 };
 
@@ -73,6 +84,14 @@ Ints gather_slaves(const ContactState& s, Ints sel);
 /// outside(j) exceeds their release edge, and the slave's dofs of u the displacement of xs1(j).
 void store_projections(ContactState& s, Ints sel, Xis xi, Values outside, Values3 xs1,
                        OwnedValuesRW u);
+
+/// docs/THEORY.md §11.4 at an iterate, for my sliding Coulomb rows sel(j) and their friction
+/// terms slips(j): the rows' slip work, and the reversal mark of those whose slip goes against
+/// their direction (mu > 0); returns how many did at this iterate.
+int coulomb_iterate(ContactState& s, Ints sel,
+                    Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips);
+/// Clears the reversal marks of rows sel.
+void clear_reversals(ContactState& s, Ints sel);
 
 /// How many of outside(j) exceed tol.
 int count_beyond(Values outside, double tol);
