@@ -81,6 +81,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     x1 = contact_.positions(u1);
     auto fresh = contact_.detect(x0, x1, trial);
     fN = contact_.normal_forces(*g, x0, x1, trial);
+    set_normal_forces(constraints_.state(), fN);
     int n_state = 0;  // docs/THEORY.md §11.4: the return map (stick <-> slip)
     {
       const LawState s{

@@ -95,9 +95,9 @@ void switch_facets(const LawState& s, Ints sel, Refs refs, Positions x1,
 
 }  // namespace
 
-// §3: master dof
-/// j = 3 i + c is expanded by expand_node (the dof itself if free, nothing if rigid or fixed,
-/// the node's own row of P if it is an active slave; X's rows and columns go through it too).
+// §3: master dof j = 3 i + c is expanded by expand_node (the dof itself if free, nothing if
+// rigid or fixed, the node's own row of P if it is an active slave; X's rows and columns go
+// through it too).
 void scatter(const LawState& s, const Active& a, const kernels::FrictionlessBlocks& b,
              const kernels::CoulombSlip* fr, LawRows& out) {
   const auto& f = s.contact.pairs()[a.pair].facets[a.facet];

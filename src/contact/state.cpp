@@ -95,21 +95,27 @@ ContactState make_state(const Contact& contact, const std::vector<Active>& mine,
 
 namespace {
 
-/// v with my rows kept and `ghosts` rows after them (value(a, ...) of each ghost entry).
+/// v with my rows kept and `ghosts` rows after them (value(h, j, ...) sets ghost j of the host
+/// copy h of the ghost rows only).
 template <class V, class F>
 V with_ghosts(const V& v, int local, std::size_t ghosts, const F& value) {
   V out(v.label(), local + ghosts);
   const auto mine = std::make_pair(0, local);
+  const auto theirs = std::make_pair(static_cast<std::size_t>(local), local + ghosts);
   if constexpr (V::rank == 1) {
     Kokkos::deep_copy(Kokkos::subview(out, mine), Kokkos::subview(v, mine));
+    const auto part = Kokkos::subview(out, theirs);
+    auto h = Kokkos::create_mirror_view(part);
+    for (std::size_t j = 0; j < ghosts; ++j) value(h, j);
+    Kokkos::deep_copy(part, h);
   } else {
     Kokkos::deep_copy(Kokkos::subview(out, mine, Kokkos::ALL),
                       Kokkos::subview(v, mine, Kokkos::ALL));
+    const auto part = Kokkos::subview(out, theirs, Kokkos::ALL);
+    auto h = Kokkos::create_mirror_view(part);
+    for (std::size_t j = 0; j < ghosts; ++j) value(h, j);
+    Kokkos::deep_copy(part, h);
   }
-  auto h = Kokkos::create_mirror_view(out);
-  Kokkos::deep_copy(h, out);
-  for (std::size_t j = 0; j < ghosts; ++j) value(h, local + j, j);
-  Kokkos::deep_copy(out, h);
   return out;
 }
 
@@ -118,18 +124,18 @@ V with_ghosts(const V& v, int local, std::size_t ghosts, const F& value) {
 void set_ghosts(ContactState& s, const std::vector<Active>& ghosts) {
   const std::size_t n = ghosts.size();
   const int l = s.local;
-  s.slave = with_ghosts(s.slave, l, n, [&](auto& h, int k, int j) { h(k) = ghosts[j].slave; });
-  s.pair = with_ghosts(s.pair, l, n, [&](auto& h, int k, int j) { h(k) = ghosts[j].pair; });
-  s.facet = with_ghosts(s.facet, l, n, [&](auto& h, int k, int j) { h(k) = ghosts[j].facet; });
-  s.flags = with_ghosts(s.flags, l, n, [&](auto& h, int k, int j) { h(k) = flags_of(ghosts[j]); });
-  s.returns = with_ghosts(s.returns, l, n, [&](auto& h, int k, int) { h(k) = 0; });
-  s.xi = with_ghosts(s.xi, l, n, [&](auto& h, int k, int j) {
-    for (int i = 0; i < 2; ++i) h(k, i) = ghosts[j].xi[i];
+  s.slave = with_ghosts(s.slave, l, n, [&](auto& h, std::size_t j) { h(j) = ghosts[j].slave; });
+  s.pair = with_ghosts(s.pair, l, n, [&](auto& h, std::size_t j) { h(j) = ghosts[j].pair; });
+  s.facet = with_ghosts(s.facet, l, n, [&](auto& h, std::size_t j) { h(j) = ghosts[j].facet; });
+  s.flags = with_ghosts(s.flags, l, n, [&](auto& h, std::size_t j) { h(j) = flags_of(ghosts[j]); });
+  s.returns = with_ghosts(s.returns, l, n, [&](auto& h, std::size_t j) { h(j) = 0; });
+  s.xi = with_ghosts(s.xi, l, n, [&](auto& h, std::size_t j) {
+    for (int i = 0; i < 2; ++i) h(j, i) = ghosts[j].xi[i];
   });
-  s.dir = with_ghosts(s.dir, l, n, [&](auto& h, int k, int j) {
-    for (int i = 0; i < 3; ++i) h(k, i) = ghosts[j].dir[i];
+  s.dir = with_ghosts(s.dir, l, n, [&](auto& h, std::size_t j) {
+    for (int i = 0; i < 3; ++i) h(j, i) = ghosts[j].dir[i];
   });
-  s.normal_force = with_ghosts(s.normal_force, l, n, [&](auto& h, int k, int) { h(k) = 0; });
+  s.normal_force = with_ghosts(s.normal_force, l, n, [&](auto& h, std::size_t j) { h(j) = 0; });
 }
 
 std::vector<Active> host_entries(const ContactState& s, int first, int count) {
@@ -173,6 +179,11 @@ void to_host(const ContactState& s, std::vector<Active>& mine) {
     mine[k].xi[1] = rows[k].xi[1];
     mine[k].off = rows[k].off;
   }
+}
+
+void set_normal_forces(ContactState& s, const std::vector<double>& fN) {
+  const auto mine = Kokkos::subview(s.normal_force, std::make_pair(0, s.local));
+  Kokkos::deep_copy(mine, Kokkos::View<const double*, Kokkos::HostSpace>(fN.data(), fN.size()));
 }
 
 Refs gather_refs(const ContactState& s, Ints sel) {

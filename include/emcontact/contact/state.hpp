@@ -31,10 +31,11 @@ struct ContactState {
   Ints slave, pair, facet, flags, returns;
   Xis xi;
   Values3 dir;          ///< Coulomb: the direction of the entry's last slip (§11.4)
-  Values normal_force;  ///< f_N of the last normal_forces (0 until then)
+  Values normal_force;  ///< f_N at the last solve's solution (0 until then; ghosts 0)
   int local = 0;
 
-  /// Of my rows, in contact-node numbering (kernels; their xi follows xi).
+  /// Of my rows, in contact-node numbering (kernels; their xi follows xi): valid for the
+  /// contact nodes of the solve (ActiveConstraints::use makes the state anew for each solve).
   Refs refs;
   /// My rows' slave reference positions, and how far xi may lie outside the facet before the
   /// entry is released (the pair's edge extension of activation, §6.3).
@@ -72,6 +73,9 @@ void to_host(const ContactState& s, std::vector<Active>& mine);
 
 /// Rows [first, first + count) of the state as host records.
 std::vector<Active> host_entries(const ContactState& s, int first, int count);
+
+/// My rows' normal force f_N (§4) at the solution of a solve, fN in row order.
+void set_normal_forces(ContactState& s, const std::vector<double>& fN);
 
 /// refs(sel(j)) with its xi from the state, for kernels over a subset of my rows.
 Refs gather_refs(const ContactState& s, Ints sel);
