@@ -20,7 +20,7 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   /// place). Rebuilds P when the set differs from the last one on any rank (collective);
   /// returns true if the set's entries (slave nodes, and stick or slip) changed: the Newton
   /// matrix changed more than from iterate to iterate (an iterate-dependent law's P is rebuilt
-  /// at every iterate anyway). index: every rank's entries of the set (Contact::gather).
+  /// at every iterate anyway). index: the entries of the set my chains reach (Contact::gather).
   bool use(std::vector<Active>* trial, ActiveIndex index);
   /// The entries of the trial set my chains reach (Contact::gather).
   const ActiveIndex& index() const { return index_; }
