@@ -330,4 +330,28 @@ void dummy_betas(const Matrix& A, const Kokkos::View<const GO*, ExecSpace> dof, 
   dummy_betas_at(A, diagonal_offsets(A, dof), beta);
 }
 
+void mean_diagonals(const Matrix& A, const Kokkos::View<const int*, ExecSpace> slave,
+                    const Values beta) {
+  const auto lA = A.getLocalMatrixDevice();
+  const auto rows = A.getRowMap()->getLocalMap();
+  const auto cols = A.getColMap()->getLocalMap();
+  Kokkos::parallel_for(
+      "emcontact::contact::mean_diagonals", Kokkos::RangePolicy<ExecSpace>(0, beta.extent(0)),
+      KOKKOS_LAMBDA(const int k) {
+        double b = 0;
+        for (int c = 0; c < 3; ++c) {
+          const GO g = 3 * static_cast<GO>(slave(k)) + c;  // fem::dof_gid
+          const LO row = rows.getLocalElement(g), col = cols.getLocalElement(g);
+          double d = 0;  // the row's first entry in column col, as a host row view reads it
+          for (auto j = lA.graph.row_map(row); j < lA.graph.row_map(row + 1); ++j)
+            if (lA.graph.entries(j) == col) {
+              d = lA.values(j);
+              break;
+            }
+          b += d / 3;
+        }
+        beta(k) = b;
+      });
+}
+
 }  // namespace emc::contact

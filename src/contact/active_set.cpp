@@ -58,7 +58,8 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       changed = constraints_.use(&trial, std::move(index));
     }
     g = solve(changed, empty, warm, search);
-    swept = false;  // u1 moved
+    constraints_.sync(trial);  // the facets and xi Newton's iterates moved (§5)
+    swept = false;             // u1 moved
     warm = g != nullptr;
     if (!g) {
       // docs/THEORY.md §11.4: sliding entries whose slip turned back had no sliding solution:
@@ -67,7 +68,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       contact_.select(sweep, u1, constraints_.index());
       swept = true;
       at_u0();
-      const LawState s{contact_, constraints_.index(), x0, x0, {}};
+      const LawState s{contact_, constraints_.index(), x0, x0, {}, nullptr, &constraints_.state()};
       int back = 0;
       for (const Law* law : contact_.laws()) back += law->after_failure(s, trial);
       if (contact_.global_count(back) == 0) return false;
@@ -80,9 +81,11 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
     x1 = contact_.positions(u1);
     auto fresh = contact_.detect(x0, x1, trial);
     fN = contact_.normal_forces(*g, x0, x1, trial);
+    set_normal_forces(constraints_.state(), fN);
     int n_state = 0;  // docs/THEORY.md §11.4: the return map (stick <-> slip)
     {
-      const LawState s{contact_, constraints_.index(), x0, x1, {}, constraints_.matrix()};
+      const LawState s{
+          contact_, constraints_.index(), x0, x1, {}, constraints_.matrix(), &constraints_.state()};
       for (const Law* law : contact_.laws()) {
         n_state += law->settle(s, trial, *g);
         law->activate(s, fresh, *g);
@@ -155,12 +158,12 @@ void ActiveSetLoop::accept(Positions x0, Positions x1, const Vector& g, std::vec
     }
   }
   {  // docs/THEORY.md §11.2: the energy friction dissipated over the step
-    const LawState s{contact_, constraints_.index(), x0, x1, {}};
+    const LawState s{contact_, constraints_.index(), x0, x1, {}, nullptr, &constraints_.state()};
     double d = 0;
     for (const Law* law : contact_.laws()) d += law->dissipation(s, trial, g);
     Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 1, &d, &out.dissipated);
-    double cone = 0;  // §11.4: how far a sticking Coulomb entry is outside its cone
-    for (const Law* law : contact_.laws()) cone = std::max(cone, law->cone_ratio());
+    double cone = constraints_.state().cone;  // §11.4: how far a sticking Coulomb entry is
+                                              // outside its cone
     Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_MAX, 1, &cone, &out.stats.cone_ratio);
   }
   for (const auto& a : trial) out.slip.push_back(a.slip ? 1 : 0);

@@ -14,7 +14,7 @@ namespace emc::contact {
 ClosureWork Contact::closure_work(const Vector& g, Positions x0, Positions x1,
                                   const std::vector<Active>& active, Vector& p) const {
   const auto& m = disc_.model();
-  const auto F = transmitted_forces(g, gather(active));
+  const auto F = transmitted_forces(g, gather_all(active));
   std::vector<Active> closed;
   for (const auto& a : active)
     if (closes(a)) closed.push_back(a);

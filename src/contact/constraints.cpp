@@ -13,8 +13,9 @@ ActiveConstraints::ActiveConstraints(const Contact& contact, linalg::Elimination
   elim_.set_constraints(fixed_, {}, {});
 }
 
-LawState ActiveConstraints::state(Positions x1) const {
+LawState ActiveConstraints::law_state(Positions x1) {
   LawState s{contact_, index_, x0_, x1, {}};
+  s.state = &state_;
   if (iterate_dependent_ && x1.extent(0) > 0) {  // n+1/2 for the chains' tangents (§5)
     Positions xh = contact_.nodes().new_positions("emc::xh");
     midpoint(x0_, x1, xh);
@@ -43,13 +44,14 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
       iterate_dependent_ |= contact_.laws()[l]->iterate_dependent();
     }
   index_ = std::move(index);
+  state_ = make_state(contact_, *trial, index_.ghosts);
   const bool new_members = contact_.global_count(members == members_ ? 0 : 1) > 0;
   members_ = std::move(members);
   if (iterate_dependent_) applied_.clear();  // P is rebuilt at every iterate anyway
   if (contact_.global_count(key == applied_ ? 0 : 1) == 0) return false;
   if (!iterate_dependent_) {  // an iterate-dependent P is set by before_reduce at each iterate
     LawRows out;
-    const LawState s = state({});
+    const LawState s = law_state({});
     for (const Law* law : present_) law->rows(s, *trial, nullptr, nullptr, out);
     elim_.set_constraints(fixed_, out.rows, {});
     elim_.set_dummies(out.dummies);  // beta on them at every iterate (before_reduce)
@@ -68,9 +70,9 @@ bool ActiveConstraints::use(std::vector<Active>* trial, ActiveIndex index) {
 // docs/THEORY.md §7.2: closing full-stick slaves start on their master point.
 void ActiveConstraints::start(const Vector&, Vector& u1) {
   if (present_.empty()) return;  // x0_: set_start_positions
-  const LawState s = state({});
+  const LawState s = law_state({});
   for (const Law* law : present_) law->start(s, *trial_, u1);
-  if (iterate_dependent_) index_ = contact_.gather(*trial_);  // facets and xi moved
+  if (iterate_dependent_) exchange();  // facets and xi moved
 }
 
 void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, Vector& g, const Matrix& A) {
@@ -89,7 +91,7 @@ void ActiveConstraints::before_reduce(const Vector&, const Vector& u1, Vector& g
   }
   // P depends on the iterate (frictionless: N, tau at n+1/2, the facet): rebuild every time
   LawRows out;
-  const LawState s = state(contact_.positions(u1));
+  const LawState s = law_state(contact_.positions(u1));
   for (const Law* law : present_) law->rows(s, *trial_, &g, &A, out);
   roundoff_ = out.roundoff;
   elim_.set_constraints(fixed_, out.rows, out.beta);
@@ -120,8 +122,8 @@ bool ActiveConstraints::abandon(int iteration, double r, double r0) {
   if (iteration < 4) return false;
   int stalls = 0, slides = 0;
   for (const Law* law : present_) {
-    stalls += law->stalls() ? 1 : 0;
-    slides += law->slides() ? 1 : 0;
+    stalls += state_.reversed_now[static_cast<int>(law->kind())] ? 1 : 0;
+    slides += state_.sliding_now[static_cast<int>(law->kind())] ? 1 : 0;
   }
   int flags[2] = {stalls, slides}, all[2];
   Teuchos::reduceAll(*contact_.disc_comm(), Teuchos::REDUCE_SUM, 2, flags, all);
@@ -130,9 +132,16 @@ bool ActiveConstraints::abandon(int iteration, double r, double r0) {
 
 void ActiveConstraints::after_update(const Vector&, Vector& u1) {
   if (!iterate_dependent_) return;
-  const LawState s = state({});
+  const LawState s = law_state({});
   for (const Law* law : present_) law->after_update(s, *trial_, u1);
-  index_ = contact_.gather(*trial_);  // xi and facets moved: chains use the new ones
+  exchange();  // xi and facets moved: chains use the new ones
+}
+
+// §3: the chains' index from my rows of the state (a host copy: the chains are a host pass),
+// the other ranks' links into the state's ghost rows.
+void ActiveConstraints::exchange() {
+  index_ = contact_.gather(host_entries(state_, 0, state_.local));
+  set_ghosts(state_, index_.ghosts);
 }
 
 }  // namespace emc::contact

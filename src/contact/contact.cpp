@@ -30,6 +30,11 @@ Contact::Contact(const fem::Discretization& disc, std::vector<Pair> pairs)
   // frictionless slaves on it are projected, §7.2)
   std::sort(distinct_laws_.begin(), distinct_laws_.end(),
             [](const Law* a, const Law* b) { return a->kind() < b->kind(); });
+  master_node_.assign(disc.model().num_nodes(), 0);
+  for (const auto& p : pairs_)
+    for (const auto& f : p.facets)
+      for (int n : f)
+        if (n < disc.model().num_nodes()) master_node_[n] = 1;
 }
 
 Contact::~Contact() = default;
@@ -99,21 +104,53 @@ void Contact::mark_kept_gaps(std::vector<Active>& active, Positions x1) const {
     if (pairs_[active[k].pair].close_gap) active[k].keep_gap = h(k) != 0;
 }
 
-ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
-  std::vector<double> send;
-  for (const auto& a : mine) {
-    pack(a, send);
-    send.push_back(double(a.slip));  // docs/THEORY.md §11: stick or slip travels with the entry
+namespace {
+
+/// The entries of `send` (packed with their slip) of every rank, by slave; `mine` kept apart.
+ActiveIndex index_of(const Comm& comm, const std::vector<Active>& mine,
+                     const std::vector<Active>& send) {
+  std::vector<double> packed;
+  for (const auto& a : send) {
+    pack(a, packed);
+    packed.push_back(double(a.slip));  // docs/THEORY.md §11: stick or slip travels with the entry
   }
-  const auto all = allgather(*disc_.comm(), send);
+  const auto all = allgather(comm, packed);
   ActiveIndex index;
+  std::vector<int> own;
+  for (const auto& a : mine) own.push_back(a.slave);
+  std::sort(own.begin(), own.end());
   constexpr std::size_t stride = kPackedActive + 1;
   for (std::size_t k = 0; k + stride <= all.size(); k += stride) {
     Active a = unpack(&all[k]);
     a.slip = all[k + kPackedActive] != 0;
     index.by_slave.emplace(a.slave, a);
+    if (!std::binary_search(own.begin(), own.end(), a.slave)) index.ghosts.push_back(a);
   }
+  for (const auto& a : mine) {  // (slave, pair, facet, xi, slip): what travels
+    Active b;
+    b.slave = a.slave;
+    b.pair = a.pair;
+    b.facet = a.facet;
+    b.xi[0] = a.xi[0];
+    b.xi[1] = a.xi[1];
+    b.slip = a.slip;
+    index.by_slave.emplace(b.slave, b);
+  }
+  std::sort(index.ghosts.begin(), index.ghosts.end());
   return index;
+}
+
+}  // namespace
+
+ActiveIndex Contact::gather(const std::vector<Active>& mine) const {
+  std::vector<Active> links;
+  for (const auto& a : mine)
+    if (master_node(a.slave)) links.push_back(a);
+  return index_of(*disc_.comm(), mine, links);
+}
+
+ActiveIndex Contact::gather_all(const std::vector<Active>& mine) const {
+  return index_of(*disc_.comm(), mine, mine);
 }
 
 // docs/THEORY.md §3.5: rows of P compose along chains, P = P_1 P_2 ...

@@ -8,7 +8,8 @@
 #include <cmath>
 
 #include "emcontact/contact/contact.hpp"
-#include "emcontact/contact/law.hpp"
+#include "emcontact/views.hpp"
+#include "law_parts.hpp"
 
 namespace emc::contact {
 
@@ -25,33 +26,53 @@ class Coulomb final : public Law {
   bool clamps(const Pair& p) const override { return !p.close_gap; }
   bool iterate_dependent() const override { return true; }
   void rows(const LawState& s, const std::vector<Active>& active, const Vector* g, const Matrix* A,
-            LawRows& out) const override {
-    stick_->rows(s, active, g, A, out);
-    slip_->rows(s, active, g, A, out);
-  }
-  void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
-    stick_->start(s, active, u1);
-    slip_->start(s, active, u1);
-  }
-  void after_update(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
-    slip_->after_update(s, active, u1);
+            LawRows& out) const override;
+  void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override;
+  void after_update(const LawState& s, std::vector<Active>&, Vector& u1) const override {
+    project_sliding(s, Kind::coulomb, u1);
   }
   bool releases(const Active& a, double fN) const override { return fN < 0 || (a.slip && a.off); }
   int settle(const LawState& s, std::vector<Active>& active, const Vector& g) const override;
   int after_failure(const LawState& s, std::vector<Active>& active) const override;
   void activate(const LawState& s, std::vector<Active>& fresh, const Vector& g) const override;
-  bool stalls() const override { return slip_->stalls(); }
-  bool slides() const override { return slip_->slides(); }
   double dissipation(const LawState& s, const std::vector<Active>& active,
                      const Vector& g) const override;
-  double cone_ratio() const override { return cone_; }
-
- private:
-  /// |f_T| / (mu f_N) of the entries the last return map kept in stick, at most (§11.4)
-  mutable double cone_ = 0;
-  std::shared_ptr<const Law> stick_ = make_full_stick(Kind::coulomb);
-  std::shared_ptr<const Law> slip_ = make_frictionless(Kind::coulomb);
 };
+
+// §4 rows of the sticking entries, then §5 rows of the sliding ones with the friction terms of
+// docs/THEORY.md §11.3; the friction force's work and the slips that turned against their
+// direction at this iterate go to the state (§11.4).
+void Coulomb::rows(const LawState& s, const std::vector<Active>& active, const Vector* g,
+                   const Matrix* A, LawRows& out) const {
+  stick_rows(s, Kind::coulomb, active, A, out);
+  ContactState& st = *s.state;
+  Kokkos::deep_copy(st.slip_work, 0.0);
+  const SlidingBlocks b = sliding_blocks(s, Kind::coulomb, g, A);
+  const int n = b.size();
+  if (n == 0) return;
+  constexpr int kind = static_cast<int>(Kind::coulomb);
+  st.sliding_now[kind] = true;
+  Kokkos::View<kernels::CoulombSlip*, ExecSpace> slips("emc::coulomb_slips", n);
+  coulomb_slips(b.refs, s.x0, s.x1, g->getLocalViewDevice(Tpetra::Access::ReadOnly), b.beta,
+                b.blocks, slips);
+  st.reversed_now[kind] = coulomb_iterate(st, b.sel, slips) > 0;
+  auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), slips);
+  static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");
+  Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the scatter into P's rows)
+  for (int k = 0; k < n; ++k) {
+    scatter(s, b.entries[k], b.blocks_h(k), &fh(k), out);
+    add_beta(b, k, out);
+  }
+}
+
+void Coulomb::start(const LawState& s, std::vector<Active>& active, Vector& u1) const {
+  stick_start(s, Kind::coulomb, active, u1);
+  ContactState& st = *s.state;  // the reversals are the current solve's (§11.4)
+  constexpr int kind = static_cast<int>(Kind::coulomb);
+  clear_reversals(st, st.sliding[kind]);
+  st.reversed_now[kind] = false;
+  project_sliding(s, Kind::coulomb, u1);
+}
 
 /// My Coulomb entries of `active` (their index into it in `where`).
 std::vector<Active> mine(const Contact& contact, const std::vector<Active>& active,
@@ -80,15 +101,22 @@ double vanishing_slip(const Pair& p) {
   return 64 * kernels::epsilon() * p.edge;
 }
 
-/// The tangential force that slides an entry by the vanishing slip at most: its stiffness (the
-/// mean diagonal entry of the Newton matrix at the slave's dofs, which no neighbour's give
-/// softens) times vanishing_slip. A sticking entry outside the cone by less would slide by less
-/// than that and return to stick at once, with nothing moved (docs/THEORY.md §11.4).
-double slip_force(const LawState& s, const Active& a) {
-  if (!s.A) return 0.0;
-  double beta = 0;
-  for (int c = 0; c < 3; ++c) beta += diagonal_entry(*s.A, fem::dof_gid(a.slave, c)) / 3;
-  return beta * vanishing_slip(s.contact.pairs()[a.pair]);
+/// The tangential force that slides entry k of `entries` by the vanishing slip at most: its
+/// stiffness (the mean diagonal entry of the Newton matrix at the slave's dofs, which no
+/// neighbour's give softens; a kernel over those rows of A) times vanishing_slip. A sticking
+/// entry outside the cone by less would slide by less than that and return to stick at once,
+/// with nothing moved (docs/THEORY.md §11.4). All 0 without a matrix.
+std::vector<double> slip_forces(const LawState& s, const std::vector<Active>& entries) {
+  std::vector<double> out(entries.size(), 0.0);
+  if (!s.A || entries.empty()) return out;
+  std::vector<int> slaves;
+  for (const auto& a : entries) slaves.push_back(a.slave);
+  Values beta("emc::coulomb_beta", entries.size());
+  mean_diagonals(*s.A, to_view("emc::coulomb_slaves", slaves), beta);
+  const auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), beta);
+  for (std::size_t k = 0; k < entries.size(); ++k)
+    out[k] = bh(k) * vanishing_slip(s.contact.pairs()[entries[k].pair]);
+  return out;
 }
 
 /// A sliding entry returns to stick at the CPP of x_{s,n} on its facet at t_n (§4.1: the frozen
@@ -113,9 +141,13 @@ void stick_at_start(const LawState& s, std::vector<Active>& active,
 int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector& g) const {
   std::vector<std::size_t> where;
   const auto entries = mine(s.contact, active, where);
-  cone_ = 0;
+  double& cone = s.state->cone;
+  cone = 0;
   if (entries.empty()) return 0;
   const auto st = states(s, entries, g);
+  const auto slip_force = slip_forces(s, entries);
+  const auto slip_work =
+      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.state->slip_work);
   int changed = 0;
   std::vector<std::size_t> back;
   for (std::size_t k = 0; k < entries.size(); ++k) {
@@ -128,8 +160,8 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
       // out of the cone (beyond its round-off, and by more than the force of a slip that would
       // vanish) and not returned in this step: slide
       if (a.returns >= kMaxReturns || !(c.fN > 0) || !(ft > mu * c.fN * (1 + 1e-9)) ||
-          !(ft - mu * c.fN > slip_force(s, a))) {
-        if (c.fN > 0 && mu > 0) cone_ = std::max(cone_, ft / (mu * c.fN));
+          !(ft - mu * c.fN > slip_force[k])) {
+        if (c.fN > 0 && mu > 0) cone = std::max(cone, ft / (mu * c.fN));
         continue;
       }
       a.slip = true;
@@ -141,7 +173,7 @@ int Coulomb::settle(const LawState& s, std::vector<Active>& active, const Vector
     // the slip vanished (below a few ulps of the facet's size), turned back, or goes along the
     // friction force (its work < 0: the converged state of a node that sticks, §11.4): stick
     if (mu > 0 && (c.slip <= vanishing_slip(s.contact.pairs()[a.pair]) || along < 0 ||
-                   !(slip_->slip_work(a.slave) > 0))) {
+                   !(slip_work(where[k]) > 0))) {
       back.push_back(where[k]);
       ++changed;
       continue;
@@ -171,7 +203,7 @@ void Coulomb::activate(const LawState& s, std::vector<Active>& fresh, const Vect
 
 int Coulomb::after_failure(const LawState& s, std::vector<Active>& active) const {
   std::vector<Active> before = active;
-  slip_->after_failure(s, active);
+  stick_reversed(s, Kind::coulomb, active);
   std::vector<std::size_t> back;
   for (std::size_t k = 0; k < active.size(); ++k)
     if (before[k].slip && !active[k].slip) {
@@ -184,11 +216,12 @@ int Coulomb::after_failure(const LawState& s, std::vector<Active>& active) const
 
 // docs/THEORY.md §11.2: D_{n+1} - D_n = the work -f_T . s of the friction forces of the
 // sliding entries at the solution (the last iterate), = mu |f_N| |s_T| (> 0: the return map)
-double Coulomb::dissipation(const LawState&, const std::vector<Active>& active,
+double Coulomb::dissipation(const LawState& s, const std::vector<Active>& active,
                             const Vector&) const {
+  const auto work = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.state->slip_work);
   double d = 0;
-  for (const auto& a : active)
-    if (a.slip) d += slip_->slip_work(a.slave);
+  for (std::size_t k = 0; k < active.size(); ++k)
+    if (active[k].slip) d += work(k);
   return d;
 }
 

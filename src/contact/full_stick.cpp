@@ -6,7 +6,7 @@
 #include <Teuchos_TimeMonitor.hpp>
 
 #include "emcontact/contact/contact.hpp"
-#include "emcontact/contact/law.hpp"
+#include "law_parts.hpp"
 
 namespace emc::contact {
 
@@ -14,33 +14,39 @@ namespace {
 
 class FullStick final : public Law {
  public:
-  explicit FullStick(Kind own) : own_(own) {}
-  Kind kind() const override { return own_; }
+  Kind kind() const override { return Kind::full_stick; }
   double activation_weight() const override { return 0.0; }
   // docs/THEORY.md §7.2: a closing node keeps its CPP in the edge extension (closing to a
   // clamped xi drags it along the facet)
   bool clamps(const Pair& p) const override { return !p.close_gap; }
   bool iterate_dependent() const override { return false; }
-  void rows(const LawState& s, const std::vector<Active>& active, const Vector* g, const Matrix* A,
-            LawRows& out) const override;
-  void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override;
+  void rows(const LawState& s, const std::vector<Active>& active, const Vector*, const Matrix* A,
+            LawRows& out) const override {
+    stick_rows(s, Kind::full_stick, active, A, out);
+  }
+  void start(const LawState& s, std::vector<Active>& active, Vector& u1) const override {
+    stick_start(s, Kind::full_stick, active, u1);
+  }
   void after_update(const LawState&, std::vector<Active>&, Vector&) const override {}
   bool releases(const Active&, double fN) const override { return fN < 0; }
-
- private:
-  Kind own_;  ///< the pairs' type: full stick, or Coulomb's sticking entries (§11)
-  bool mine(const Pair& p, const Active& a) const { return p.kind == own_ && sticks(p, a); }
 };
 
+/// Whether entry a of pair p is one of the sticking entries of pairs of type own.
+bool sticking(const Pair& p, const Active& a, Kind own) {
+  return p.kind == own && sticks(p, a);
+}
+
+}  // namespace
+
 // docs/THEORY.md §3.1, §4.2: du_s = N du_m; the slave's own column of P is zero (three dummies).
-void FullStick::rows(const LawState& s, const std::vector<Active>& active, const Vector*,
-                     const Matrix* A, LawRows& out) const {
+void stick_rows(const LawState& s, Kind own, const std::vector<Active>& active, const Matrix* A,
+                LawRows& out) {
   static auto timer = Teuchos::TimeMonitor::getNewTimer("emcontact: contact: chains and rows");
   Teuchos::TimeMonitor tm(*timer);  // the host pass (§3 chains, the rows of P)
   const auto& pairs = s.contact.pairs();
   std::vector<GO> dummies;
   for (const auto& a : active) {
-    if (!mine(pairs[a.pair], a)) continue;
+    if (!sticking(pairs[a.pair], a, own)) continue;
     const auto& f = pairs[a.pair].facets[a.facet];
     double N[3];
     kernels::facet_shape(a.xi, N);
@@ -65,15 +71,15 @@ void FullStick::rows(const LawState& s, const std::vector<Active>& active, const
 // started from the last solution moves the entries activated since, docs/THEORY.md §6.1-§6.2),
 // a closing slave at x_{s,n+1} = N x_{m,n+1} (docs/THEORY.md §7.2). A master node that is a
 // slave itself (a chain) moves in one sweep and its own slaves follow in the next.
-void FullStick::start(const LawState& s, std::vector<Active>& active, Vector& u1) const {
+void stick_start(const LawState& s, Kind own, const std::vector<Active>& active, Vector& u1) {
   const Contact& contact = s.contact;
   const auto& m = contact.disc_model();
-  std::vector<Active> sticking;
+  std::vector<Active> entries;
   for (const auto& a : active)
-    if (mine(contact.pairs()[a.pair], a) && !m.fixed[a.slave]) sticking.push_back(a);
-  if (contact.global_count(static_cast<int>(sticking.size())) == 0) return;
-  const Refs refs = contact.refs(sticking);
-  Values3 d("emc::stick_corrections", sticking.size());
+    if (sticking(contact.pairs()[a.pair], a, own) && !m.fixed[a.slave]) entries.push_back(a);
+  if (contact.global_count(static_cast<int>(entries.size())) == 0) return;
+  const Refs refs = contact.refs(entries);
+  Values3 d("emc::stick_corrections", entries.size());
   for (int sweep = 0; sweep < 8; ++sweep) {
     const double moved = stick_corrections(refs, s.x0, contact.nodes().lazy_positions(u1), d);
     add_to_slaves(refs, d, u1.getLocalViewDevice(Tpetra::Access::ReadWrite));
@@ -83,10 +89,8 @@ void FullStick::start(const LawState& s, std::vector<Active>& active, Vector& u1
   }
 }
 
-}  // namespace
-
-std::shared_ptr<const Law> make_full_stick(Kind own) {
-  return std::make_shared<FullStick>(own);
+std::shared_ptr<const Law> make_full_stick() {
+  return std::make_shared<FullStick>();
 }
 
 }  // namespace emc::contact

@@ -2,6 +2,8 @@
 
 namespace emc::contact {
 
+std::shared_ptr<const Law> make_full_stick();
+std::shared_ptr<const Law> make_frictionless();
 std::shared_ptr<const Law> make_coulomb();
 
 std::shared_ptr<const Law> make_law(Kind kind) {

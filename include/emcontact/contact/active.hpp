@@ -75,11 +75,13 @@ inline void unpack_state(const double* p, Active& a) {
   a.off = p[4] != 0;
 }
 
-/// Every rank's active entries by slave node (replicated), to compose chains (§3): a master
-/// node that is itself an active slave elsewhere contributes its own row of P.
+/// The active entries a rank's chains (§3) can reach, by slave node: its own and the other ranks'
+/// entries whose slave is a master node (a master node that is itself an active slave elsewhere
+/// contributes its own row of P). Contact::gather_all makes one of every rank's entries.
 struct ActiveIndex {
   std::map<int, Active> by_slave;
-  mutable int cycles = 0;  ///< chains that looped back and were cut
+  std::vector<Active> ghosts;  ///< the other ranks' entries of by_slave (ascending slave)
+  mutable int cycles = 0;      ///< chains that looped back and were cut
 };
 
 struct StepContactStats {

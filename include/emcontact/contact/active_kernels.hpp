@@ -128,5 +128,9 @@ DiagonalOffsets diagonal_offsets(const Matrix& A, Kokkos::View<const GO*, ExecSp
 void dummy_betas(const Matrix& A, Kokkos::View<const GO*, ExecSpace> dof, Values beta);
 /// The same with the offsets of the dofs' diagonal entries (diagonal_offsets, for A's graph).
 void dummy_betas_at(const Matrix& A, DiagonalOffsets at, Values beta);
+/// docs/THEORY.md §5.4 (eq. 59): beta(k), the mean of the diagonal entries of A at the three dofs
+/// of owned slave node slave(k), each divided by 3 and summed in dof order, read from those rows
+/// of A's local matrix (a row without a diagonal entry adds 0).
+void mean_diagonals(const Matrix& A, Kokkos::View<const int*, ExecSpace> slave, Values beta);
 
 }  // namespace emc::contact

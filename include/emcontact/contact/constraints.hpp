@@ -7,6 +7,7 @@
 #include "emcontact/contact/active_kernels.hpp"
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/law.hpp"
+#include "emcontact/contact/state.hpp"
 #include "emcontact/linalg/elimination.hpp"
 
 namespace emc::contact {
@@ -19,10 +20,15 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   /// place). Rebuilds P when the set differs from the last one on any rank (collective);
   /// returns true if the set's entries (slave nodes, and stick or slip) changed: the Newton
   /// matrix changed more than from iterate to iterate (an iterate-dependent law's P is rebuilt
-  /// at every iterate anyway). index: every rank's entries of the set (Contact::gather).
+  /// at every iterate anyway). index: the entries of the set my chains reach (Contact::gather).
   bool use(std::vector<Active>* trial, ActiveIndex index);
-  /// All ranks' entries of the trial set (chains).
+  /// The entries of the trial set my chains reach (Contact::gather).
   const ActiveIndex& index() const { return index_; }
+  /// The trial set on the execution space, which Newton's iterates update.
+  const ContactState& state() const { return state_; }
+  ContactState& state() { return state_; }
+  /// After a solve: the facets, xi and off flags the iterates moved into the trial set.
+  void sync(std::vector<Active>& trial) const { to_host(state_, trial); }
   /// The contact nodes at t_n (the positions at u0 of the current contact nodes), for start.
   void set_start_positions(Positions x0) { x0_ = x0; }
 
@@ -48,11 +54,13 @@ class ActiveConstraints : public linalg::ConstraintHooks {
   std::vector<const Law*> present_;             ///< laws with an entry on some rank
   bool iterate_dependent_ = false;              ///< some present law's rows follow the iterate
   Positions x0_;                                ///< contact nodes at t_n
-  ActiveIndex index_;                           ///< every rank's active entries (chains)
+  ActiveIndex index_;                           ///< the entries my chains reach
+  ContactState state_;                          ///< the trial set's rows (Newton's iterates)
   double roundoff_ = 0;                         ///< LawRows::roundoff at the last iterate
   const Matrix* A_ = nullptr;                   ///< the Newton matrix of the last iterate
 
-  LawState state(Positions x1) const;
+  LawState law_state(Positions x1);
+  void exchange();
   void subtract_loads(const std::vector<std::pair<GO, double>>& load, Vector& g) const;
 };
 

@@ -28,7 +28,8 @@ struct DeepCrossings {
   int pair = -1, node = -1;
 };
 
-/// A_ii of an owned dof i of A (0 if the row stores no diagonal entry).
+/// A_ii of an owned dof i of A (0 if the row stores no diagonal entry), read from its host row:
+/// a reference for tests (the laws read A's diagonal with mean_diagonals, dummy_betas).
 double diagonal_entry(const Matrix& A, GO i);
 
 class Contact {
@@ -82,8 +83,16 @@ class Contact {
   std::vector<double> normal_forces(const Vector& g, Positions x0, Positions x1,
                                     const std::vector<Active>& active) const;
 
-  /// All ranks' active entries (collective).
+  /// The index of my entries `mine` and of the other ranks' entries whose slave is a master node
+  /// (the chains' links, §3): only those rows cross ranks (collective).
   ActiveIndex gather(const std::vector<Active>& mine) const;
+  /// All ranks' active entries (collective): the transmitted forces (closure, docs/THEORY.md
+  /// §7.4) follow chains backwards, from a master node to every entry on its facets.
+  ActiveIndex gather_all(const std::vector<Active>& mine) const;
+  /// Whether global node n is a node of some pair's master facets (a chain's link, §3).
+  bool master_node(int n) const {
+    return n >= 0 && n < int(master_node_.size()) && master_node_[n];
+  }
 
   /// Adds w du_{node,c} to row r in terms of q: the dof itself if free, nothing if rigid or
   /// fixed, or the node's own row of P if it is an active slave (chains, §3; a cycle is cut).
@@ -126,6 +135,7 @@ class Contact {
   std::vector<std::shared_ptr<const Law>> laws_;
   std::vector<const Law*> distinct_laws_;
   mutable ContactNodes nodes_;
+  std::vector<char> master_node_;  ///< per model node: a node of some pair's master facets
   void check_facing(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
   void check_overlap(const Pair& pr, const std::vector<int>& my_slaves,
                      const std::vector<double>& x, const std::string& file) const;

@@ -13,10 +13,12 @@
 namespace emc::contact {
 
 class Contact;
+struct ContactState;
 
-/// What a law sees of the iterate: the active set (all ranks', for chains) and the contact
-/// nodes' positions at t_n and at the iterate (host copies; empty when the law's rows do not
-/// depend on the iterate).
+/// What a law sees of the iterate: the entries its chains reach (index), the contact nodes'
+/// positions at t_n and at the iterate (empty when the law's rows do not depend on the
+/// iterate), and the trial set's state (state.hpp), which holds what the laws keep from one
+/// iterate or solve to the next: a law object holds no state of its own.
 struct LawState {
   const Contact& contact;
   const ActiveIndex& index;
@@ -25,6 +27,8 @@ struct LawState {
   /// The Newton matrix of the last solve (the return map's slip resolution, docs/THEORY.md
   /// §11.4), or null.
   const Matrix* A = nullptr;
+  /// The trial set's state on the execution space (ActiveConstraints::state).
+  ContactState* state = nullptr;
 };
 
 /// The elimination's rows a law contributes.
@@ -69,19 +73,8 @@ class Law {
   virtual int settle(const LawState&, std::vector<Active>&, const Vector&) const { return 0; }
   /// §6.3: the state (stick/slip) of the law's entries `fresh` activated on the solve (g).
   virtual void activate(const LawState&, std::vector<Active>&, const Vector&) const {}
-  /// Whether one of the law's entries slides against its direction at the last iterate.
-  virtual bool stalls() const { return false; }
-  /// Whether the law has Coulomb entries sliding at the last iterate.
-  virtual bool slides() const { return false; }
   /// After a failed solve: entries whose state is to blame change it; returns how many (local).
   virtual int after_failure(const LawState&, std::vector<Active>&) const { return 0; }
-  /// docs/THEORY.md §11.2: the work -f_T . s of the friction force on my sliding entry of
-  /// `slave` at the last iterate (0 if it has none).
-  virtual double slip_work(int /*slave*/) const { return 0; }
-  /// docs/THEORY.md §11.4: the largest |f_T| / (mu f_N) of the law's entries with f_N > 0 that
-  /// its last `settle` kept in stick (local, 0 without any): at the accepted solve, the
-  /// step's.
-  virtual double cone_ratio() const { return 0; }
   /// The energy the law's entries dissipated over the step at the solution (local sum).
   virtual double dissipation(const LawState&, const std::vector<Active>&, const Vector&) const {
     return 0;
@@ -89,9 +82,5 @@ class Law {
 };
 
 std::shared_ptr<const Law> make_law(Kind kind);
-/// The constraints of §4 and §5 on the entries of pairs of type `own` that stick (§4) or slide
-/// (§5; with Coulomb friction for own = coulomb, docs/THEORY.md §11).
-std::shared_ptr<const Law> make_full_stick(Kind own = Kind::full_stick);
-std::shared_ptr<const Law> make_frictionless(Kind own = Kind::frictionless);
 
 }  // namespace emc::contact

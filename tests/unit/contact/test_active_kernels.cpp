@@ -15,6 +15,7 @@
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/nodes.hpp"
+#include "emcontact/views.hpp"
 #include "kernels/coulomb.hpp"
 #include "kernels/facet.hpp"
 #include "kernels/frictionless.hpp"
@@ -690,5 +691,17 @@ TEST(ActiveKernels, DummyBetasEqualAHostLoop) {
     double tr = 0;
     for (int c = 0; c < 3; ++c) tr += c::diagonal_entry(A, dummies[3 * k + c]);
     EXPECT_EQ(bh(k), tr / 3) << "slave " << k << " after new values";
+  }
+  // eq. 59: the frictionless beta, each diagonal entry / 3 summed in dof order (the host loop
+  // the laws used), by the kernel over the slaves' rows of the local matrix
+  std::vector<int> slaves;
+  for (int k = 0; k < ns; ++k) slaves.push_back(static_cast<int>(dummies[3 * k] / 3));
+  c::Values mean("mean", ns);
+  c::mean_diagonals(A, emc::to_view("slaves", slaves), mean);
+  auto mh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), mean);
+  for (int k = 0; k < ns; ++k) {
+    double b = 0;
+    for (int c = 0; c < 3; ++c) b += c::diagonal_entry(A, dummies[3 * k + c]) / 3;
+    EXPECT_EQ(mh(k), b) << "slave " << k;
   }
 }
