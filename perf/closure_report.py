@@ -10,7 +10,7 @@ Writes perf/results/closure.json, docs/ball_gap_closure.png and the table in per
 --reuse reads out/ball_close_{false,true}/monitors.csv of an earlier run instead of running
 (and the CPU time from out/ball_close_*.log if that run was timed by /usr/bin/time -v).
 """
-import argparse, csv, datetime, json, os, re, resource, subprocess, sys
+import argparse, csv, json, os, re, resource, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
 
@@ -132,8 +132,8 @@ def main():
     fig.suptitle("inputs/ball.xml: the hovering gap with and without the closure")
     fig.tight_layout()
     fig.savefig(os.path.join(ROOT, 'docs', 'ball_gap_closure.png'), dpi=90)
-    text = ('Measured %s by `/usr/bin/python3 perf/closure_report.py` (inputs/ball.xml, full stick '
-            'on the rigid ground, dt = 1 ms, 2.5 s).\n\n' % datetime.date.today().isoformat()) + table(runs)
+    text = ('Measured by `/usr/bin/python3 perf/closure_report.py` (inputs/ball.xml, full stick '
+            'on the rigid ground, dt = 1 ms, 2.5 s).\n\n') + table(runs)
     replace_section(os.path.join(ROOT, 'perf', 'README.md'), 'closure', text)
     print(text)
 

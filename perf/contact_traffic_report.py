@@ -11,7 +11,7 @@ and the table in perf/README.md between <!-- contact_traffic:begin --> and
 
     /usr/bin/python3 perf/contact_traffic_report.py [--build build] [--steps 6] [--sizes 0.026 0.0129]
 """
-import argparse, datetime, json, os, re, subprocess, sys
+import argparse, json, os, re, subprocess, sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_util import ENV, ROOT, replace_section  # noqa: E402
 
@@ -63,9 +63,9 @@ def main():
     os.makedirs(os.path.join(ROOT, 'perf', 'results'), exist_ok=True)
     with open(os.path.join(ROOT, 'perf', 'results', 'contact_traffic.json'), 'w') as f:
         json.dump(rows, f, indent=1)
-    lines = ['Measured %s by `/usr/bin/python3 perf/contact_traffic_report.py --steps %d --sizes %s` (the '
+    lines = ['Measured by `/usr/bin/python3 perf/contact_traffic_report.py --steps %d --sizes %s` (the '
              'ball\'s impact phase, `preconditioner = %s`; largest over the ranks).' % (
-                 datetime.date.today(), a.steps, ' '.join(a.sizes), a.preconditioner), '',
+                 a.steps, ' '.join(a.sizes), a.preconditioner), '',
              '| tets | nodes | ranks | contact nodes per rank | of which remote | bytes received per import | '
              'imports per step | replicated: doubles per rank / bytes per import | contact / assembly s per step | '
              'of contact: selection / activation / chains and rows (host) |',

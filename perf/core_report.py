@@ -73,7 +73,7 @@ def main():
     with open(os.path.join(ROOT, 'perf', 'results', 'core.json'), 'w') as f:
         json.dump(res, f, indent=1)
 
-    md = ['Measured on %s (%s) by `/usr/bin/python3 perf/core_report.py`.' % (res['date'], res['machine']), '',
+    md = ['Measured by `/usr/bin/python3 perf/core_report.py` on %s.' % res['machine'], '',
           '| case | tets | steps | max \\|E-E0\\| / max(K+W+\\|Pi\\|) | max \\|L-L0\\|/\\|L0\\| | max \\|J-J0\\|/\\|J0\\| | Newton its/step |',
           '|---|---|---|---|---|---|---|']
     for c in cons:

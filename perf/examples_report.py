@@ -114,23 +114,28 @@ def main():
     md = ['Measured by `/usr/bin/python3 perf/examples_report.py` on this project\'s 2-core machine, one rank.', '',
           '| example | tets | steps | wall s | Newton its/step (max) | max \\|E+D-E0\\|/\\|E0\\| | conserved components: max drift / initial \\|L\\| or \\|J\\| | contact periods [s] | active gap min / max [m] | re-solves/step |',
           '|---|---|---|---|---|---|---|---|---|---|']
+    # Rows measured on one day share a batch number (the dates stay in the JSON): the VM's speed
+    # varies between days, so wall times compare only within a batch.
+    days = sorted({res[name].get('date', '') for name, _ in EXAMPLES if name in res})
     for name, _ in EXAMPLES:
         if name not in res:
             continue
         r = res[name]
+        label = name if len(days) == 1 else '%s (batch %d)' % (name, days.index(r.get('date', '')) + 1)
         comps = ', '.join('%s %.1e' % (c, r[c + '_drift_abs'] / max(r[c[0] + '_initial'], 1e-300))
                           for c in CONSERVED[name]) or 'none (gravity, %s)' % (
                               'friction' if r.get('dissipated', 0) else 'full stick')
-        md.append('| %s (%s) | %d | %d | %.0f | %.2f (%d) | %.1e | %s | %s | %.2g / %.2g | %.2f |' % (
-            name, r['date'], r['tets'], r['steps'], r['wall_s'], r['newton_per_step'], r['max_newton'],
+        md.append('| %s | %d | %d | %.0f | %.2f (%d) | %.1e | %s | %s | %.2g / %.2g | %.2f |' % (
+            label, r['tets'], r['steps'], r['wall_s'], r['newton_per_step'], r['max_newton'],
             r.get('ED_drift', r['E_drift']),
             comps, ', '.join('%.3f-%.3f' % tuple(p) for p in r['contact_periods']), r['gap_min'], r['gap_max'],
             r['resolves'] / max(1, r['steps'])))
-    md += ['', "Wall times: one rank, on the VM of the row's date (its speed has varied by up to 2x "
-           'between days: compare rows of one date). Active gap: g_N at '
-           'the end of the step of the nodes active in it (negative: penetration); re-solves: extra solves of a step '
-           'for the active set (docs/THEORY.md §6). D: the energy dissipated by friction (0 without friction, '
-           'docs/THEORY.md §11.2); E + D is conserved.', '']
+    together = ('all rows measured on one day' if len(days) == 1 else
+                'rows of one batch measured on one day: compare wall times only within a batch')
+    md += ['', "Wall times: one rank, %s (the VM's speed has varied by up to 2x between days). " % together +
+           'Active gap: g_N at the end of the step of the nodes active in it (negative: penetration); '
+           're-solves: extra solves of a step for the active set (docs/THEORY.md §6). D: the energy '
+           'dissipated by friction (0 without friction, docs/THEORY.md §11.2); E + D is conserved.', '']
     for name, _ in EXAMPLES:
         r = res.get(name, {})
         if 'rolling' not in r:

@@ -7,15 +7,15 @@ from report_util import ROOT, replace_section  # noqa: E402
 
 d = json.load(open(sys.argv[1]))
 ctx = d['context']
-head = ['Measured %s on %s (%d CPUs at %s MHz; Kokkos Serial, one core per process) with '
-        '`bash perf/run_benchmarks.sh`.' % (ctx['date'][:10], ctx.get('host_name', '?'), ctx['num_cpus'], ctx['mhz_per_cpu'])]
+head = ['Measured on %s (%d CPUs at %s MHz; Kokkos Serial, one core per process) with '
+        '`bash perf/run_benchmarks.sh`.' % (ctx.get('host_name', '?'), ctx['num_cpus'], ctx['mhz_per_cpu'])]
 for extra_json in sys.argv[2:]:  # later files replace the rows of the same name
     e = json.load(open(extra_json))
     names = {b['name'] for b in e['benchmarks']}
     d['benchmarks'] = [b for b in d['benchmarks'] if b['name'] not in names] + e['benchmarks']
     c = e['context']
-    head.append('Rows of `%s`: measured %s (load average %s).' % (
-        os.path.basename(c.get('executable', extra_json)), c['date'][:10],
+    head.append('Rows of `%s`: from a separate run (load average %s).' % (
+        os.path.basename(c.get('executable', extra_json)),
         ', '.join('%.1f' % v for v in c.get('load_avg', []))))
 rows = [' '.join(head), '', '| benchmark | time per iteration | rate per core | target |', '|---|---|---|---|']
 targets = {'BM_EmTet4': '-', 'BM_Assembly': '1M tets/s', 'BM_ContactSearch': '-', 'BM_ContactGridBuild': '-',

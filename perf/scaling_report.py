@@ -109,9 +109,9 @@ def main():
     os.makedirs(os.path.join(ROOT, 'perf', 'results'), exist_ok=True)
     json.dump(dict(date=datetime.date.today().isoformat(), strong=strong, weak=[list(w) for w in weak]),
               open(os.path.join(ROOT, 'perf', 'results', 'scaling.json'), 'w'), indent=1)
-    md = ['Measured %s by `/usr/bin/python3 perf/scaling_report.py` (%d steps of `inputs/ball.xml`: `flight` from t = 0, '
+    md = ['Measured by `/usr/bin/python3 perf/scaling_report.py` (%d steps of `inputs/ball.xml`: `flight` from t = 0, '
           '`impact` with the ball 5 mm above the ground at 3 m/s downward; Belos GMRES + preconditioner %s, Kokkos Serial; times per '
-          'step, maximum over ranks).' % (datetime.date.today(), a.steps, a.preconditioner), '',
+          'step, maximum over ranks).' % (a.steps, a.preconditioner), '',
           '### Strong scaling (the same mesh on 1 and 2 ranks; efficiency t1 / (2 t2))', ''] + HEADER
     for r in strong:
         one = next(x for x in strong if x['phase'] == r['phase'] and x['size'] == r['size'] and x['ranks'] == 1)

@@ -62,9 +62,9 @@ def main():
                 print(res[-1], flush=True)
     json.dump(dict(date=datetime.date.today().isoformat(), runs=res),
               open(os.path.join(ROOT, 'perf', 'results', 'solvers.json'), 'w'), indent=1)
-    md = ['Measured %s by `/usr/bin/python3 perf/solvers_report.py` (%d steps of `inputs/ball.xml` from t = 0; '
+    md = ['Measured by `/usr/bin/python3 perf/solvers_report.py` (%d steps of `inputs/ball.xml` from t = 0; '
           'the time per linear solve is the maximum over ranks; the preconditioner is reused while it works).'
-          % (datetime.date.today(), a.steps), '',
+          % a.steps, '',
           '| tets | solver | ranks | s per linear solve | Krylov its per solve | preconditioner setups (s) | wall s/step |',
           '|---|---|---|---|---|---|---|']
     for r in res:

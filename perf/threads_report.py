@@ -56,7 +56,8 @@ def main():
                     help='no runs: the tables from perf/results/threads.json, as measured with these arguments')
     a = ap.parse_args()
     if a.from_json:
-        return write_tables(a, **json.load(open(os.path.join(ROOT, 'perf', 'results', 'threads.json'))))
+        saved = json.load(open(os.path.join(ROOT, 'perf', 'results', 'threads.json')))
+        return write_tables(a, saved['assembly'], saved['runs'])
     build = os.path.join(ROOT, a.build)
     os.makedirs(os.path.join(ROOT, 'perf', 'results'), exist_ok=True)
     bench = {n: {} for n in a.threads}  # the fastest of --repeat interleaved runs of each rate
@@ -74,10 +75,9 @@ def main():
                     trials[p, r, n].append(dict(run(build, size, r, a.steps, phase, threads=n, preconditioner=p),
                                                 prec_name=p))
             runs += [fastest(trials[c]) for c in configs]
-    date = datetime.date.today().isoformat()
-    json.dump(dict(date=date, assembly=bench, runs=runs),
+    json.dump(dict(date=datetime.date.today().isoformat(), assembly=bench, runs=runs),
               open(os.path.join(ROOT, 'perf', 'results', 'threads.json'), 'w'), indent=1)
-    write_tables(a, date, bench, runs)
+    write_tables(a, bench, runs)
 
 
 def plot(runs, n1, path):
@@ -106,16 +106,16 @@ def plot(runs, n1, path):
     fig.savefig(path, dpi=120)
 
 
-def write_tables(a, date, assembly, runs):
+def write_tables(a, assembly, runs):
     plot(runs, a.threads[0], os.path.join(ROOT, 'perf', 'results', 'threads.png'))
     bench = {int(n): rates for n, rates in assembly.items()}
     missing = sorted({t for r in runs for t in TIMERS if t not in r})
     n1 = a.threads[0]
-    md = ['Measured %s by `/usr/bin/python3 perf/threads_report.py --build %s --steps %d --repeat %d --preconditioners %s` '
+    md = ['Measured by `/usr/bin/python3 perf/threads_report.py --build %s --steps %d --repeat %d --preconditioners %s` '
           '(Kokkos OpenMP, ranks %s x threads %s, `OMP_PROC_BIND=spread OMP_PLACES=threads`; the phases as in the '
           'scaling table; efficiency %d t_ref / (cores t), t_ref the time on 1 rank and %d thread(s), with the same '
           'preconditioner; each time the smallest of %d interleaved runs, each rate '
-          'the largest%s).' % (date, a.build, a.steps, a.repeat, ' '.join(a.preconditioners),
+          'the largest%s).' % (a.build, a.steps, a.repeat, ' '.join(a.preconditioners),
                                ' '.join(map(str, a.ranks)), ' '.join(map(str, a.threads)), a.threads[0], a.threads[0],
                                a.repeat,
                                '; not recorded, n/a: the ' + ', '.join(missing) + ' timer' if missing else ''), '',
