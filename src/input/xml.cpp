@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <set>
 #include <sstream>
@@ -66,11 +67,15 @@ int nesting_depth(const std::string& text) {
 /// The encoding a byte order mark at the start of `text` announces, or "" if none other than
 /// UTF-8's.
 std::string other_encoding(const std::string& text) {
-  const auto starts = [&](const char* bom, std::size_t n) {
-    return text.compare(0, n, bom, n) == 0;
+  const auto starts = [&](std::initializer_list<unsigned char> bom) {
+    if (text.size() < bom.size()) return false;
+    std::size_t i = 0;
+    for (const unsigned char b : bom)
+      if (static_cast<unsigned char>(text[i++]) != b) return false;
+    return true;
   };
-  if (starts("\x00\x00\xfe\xff", 4) || starts("\xff\xfe\x00\x00", 4)) return "UTF-32";
-  if (starts("\xfe\xff", 2) || starts("\xff\xfe", 2)) return "UTF-16";
+  if (starts({0x00, 0x00, 0xfe, 0xff}) || starts({0xff, 0xfe, 0x00, 0x00})) return "UTF-32";
+  if (starts({0xfe, 0xff}) || starts({0xff, 0xfe})) return "UTF-16";
   return "";
 }
 

@@ -5,6 +5,7 @@
 // and update these Views with kernels; the host list of Active entries is the active-set
 // loop's, synchronised with the state once per solve (ContactState::to_host).
 #include <Kokkos_Core.hpp>
+#include <array>
 #include <vector>
 
 #include "emcontact/contact/active.hpp"
@@ -43,7 +44,7 @@ struct ContactState {
   Values release_edge;
   /// Per law kind (Kind as an index): my rows of that kind that slide under §5's constraint
   /// (frictionless, Coulomb in slip); they do not change within a solve.
-  Ints sliding[3];
+  std::array<Ints, 3> sliding;
 
   /// The laws' state at Newton's iterates (docs/THEORY.md §11.4), of my rows: marked where the
   /// slip turned against the entry's direction at an iterate of the current solve; the work
