@@ -5,6 +5,21 @@
 #include <cfloat>
 #include <cmath>
 
+/// The join of a reducer functor whose static join_into(a, b) adds b into a: through volatile
+/// references before Kokkos 3.7 (what Kokkos 3.4's threaded reductions call), plain ones after
+/// (3.7 deprecates the volatile join, 4.0 refuses it).
+#if KOKKOS_VERSION < 30700
+#define EMC_KERNELS_REDUCER_JOIN(Value)                                                \
+  KOKKOS_INLINE_FUNCTION void join(volatile Value& a, const volatile Value& b) const { \
+    join_into(a, b);                                                                   \
+  }
+#else
+#define EMC_KERNELS_REDUCER_JOIN(Value)                              \
+  KOKKOS_INLINE_FUNCTION void join(Value& a, const Value& b) const { \
+    join_into(a, b);                                                 \
+  }
+#endif
+
 namespace emc::kernels {
 
 KOKKOS_INLINE_FUNCTION double sqrt(double x) {

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "kernels/facet.hpp"
+#include "kernels/math.hpp"
 #include "kernels/search.hpp"
 
 namespace emc::kernels {
@@ -109,15 +110,7 @@ struct BoundsReduce {
     }
     b.ext = 0;
   }
-#if KOKKOS_VERSION < 30700  // Kokkos before 3.7 joins threaded reductions through volatile
-  KOKKOS_INLINE_FUNCTION void join(volatile Bounds& a, const volatile Bounds& b) const {
-    join_into(a, b);
-  }
-#else
-  KOKKOS_INLINE_FUNCTION void join(Bounds& a, const Bounds& b) const {
-    join_into(a, b);
-  }
-#endif
+  EMC_KERNELS_REDUCER_JOIN(Bounds)
   template <class A, class B>
   KOKKOS_INLINE_FUNCTION static void join_into(A& a, const B& b) {
     for (int i = 0; i < 3; ++i) {

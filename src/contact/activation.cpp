@@ -11,6 +11,7 @@
 #include "emcontact/contact/overlap.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/parallel.hpp"
+#include "kernels/math.hpp"
 
 namespace emc::contact {
 
@@ -171,15 +172,7 @@ struct DeepCrossingsOf {
       r.node = s;
     }
   }
-#if KOKKOS_VERSION < 30700  // Kokkos before 3.7 joins threaded reductions through volatile
-  KOKKOS_INLINE_FUNCTION void join(volatile Deep& a, const volatile Deep& b) const {
-    join_into(a, b);
-  }
-#else
-  KOKKOS_INLINE_FUNCTION void join(Deep& a, const Deep& b) const {
-    join_into(a, b);
-  }
-#endif
+  EMC_KERNELS_REDUCER_JOIN(Deep)
   template <class A, class B>
   KOKKOS_INLINE_FUNCTION static void join_into(A& a, const B& b) {
     a.count += b.count;

@@ -9,6 +9,7 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/parallel.hpp"
+#include "kernels/math.hpp"
 
 namespace emc::contact {
 
@@ -64,15 +65,7 @@ struct SlaveBox {
       b.hi[c] = -kHuge;
     }
   }
-#if KOKKOS_VERSION < 30700  // Kokkos before 3.7 joins threaded reductions through volatile
-  KOKKOS_INLINE_FUNCTION void join(volatile value_type& a, const volatile value_type& b) const {
-    join_into(a, b);
-  }
-#else
-  KOKKOS_INLINE_FUNCTION void join(value_type& a, const value_type& b) const {
-    join_into(a, b);
-  }
-#endif
+  EMC_KERNELS_REDUCER_JOIN(value_type)
   template <class A, class B>
   KOKKOS_INLINE_FUNCTION static void join_into(A& a, const B& b) {
     for (int c = 0; c < 3; ++c) {

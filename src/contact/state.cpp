@@ -4,6 +4,7 @@
 
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/detection.hpp"
+#include "emcontact/views.hpp"
 
 namespace emc::contact {
 
@@ -75,11 +76,8 @@ void fill_local(ContactState& s, const Contact& contact, const std::vector<Activ
   s.slip_work = Values("emcontact::contact::state_slip_work", n);
   Kokkos::deep_copy(s.X, X);
   Kokkos::deep_copy(s.release_edge, edge);
-  for (int l = 0; l < 3; ++l) {
-    s.sliding[l] = Ints("emcontact::contact::state_sliding", sliding[l].size());
-    Kokkos::deep_copy(s.sliding[l], Kokkos::View<const int*, Kokkos::HostSpace>(sliding[l].data(),
-                                                                                sliding[l].size()));
-  }
+  for (int l = 0; l < 3; ++l)
+    s.sliding[l] = to_view("emcontact::contact::state_sliding", sliding[l]);
 }
 
 }  // namespace
