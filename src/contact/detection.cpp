@@ -1,3 +1,5 @@
+// docs/THEORY.md §6.3: which master facet an inactive slave node enters over a step, and the
+// crossings deeper than max penetration (the host entry points of detection.hpp).
 #include "emcontact/contact/detection.hpp"
 
 namespace emc::contact {
