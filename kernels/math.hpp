@@ -7,7 +7,9 @@
 
 /// The join of a reducer functor whose static join_into(a, b) adds b into a: through volatile
 /// references before Kokkos 3.7 (what Kokkos 3.4's threaded reductions call), plain ones after
-/// (3.7 deprecates the volatile join, 4.0 refuses it).
+/// (3.7 deprecates the volatile join, 4.0 refuses it). Value is a type, which parentheses would
+/// turn into an expression.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #if KOKKOS_VERSION < 30700
 #define EMC_KERNELS_REDUCER_JOIN(Value)                                                \
   KOKKOS_INLINE_FUNCTION void join(volatile Value& a, const volatile Value& b) const { \
@@ -19,6 +21,7 @@
     join_into(a, b);                                                 \
   }
 #endif
+// NOLINTEND(bugprone-macro-parentheses)
 
 namespace emc::kernels {
 
