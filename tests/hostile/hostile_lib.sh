@@ -1,6 +1,6 @@
 # Helpers for the hostile cases (sourced by run_hostile.sh).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-MPIRUN=(mpiexec --allow-run-as-root --oversubscribe)
+MPIRUN=(mpiexec --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1)
 
 # emc_good_input FILE: writes a valid minimal input (one small box, two steps) to FILE.
 emc_good_input() {
