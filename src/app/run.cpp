@@ -3,6 +3,7 @@
 #include "emcontact/app/run.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
 #include <cmath>
@@ -29,6 +30,7 @@
 #include "emcontact/linalg/linear_solver.hpp"
 #include "emcontact/output/fields.hpp"
 #include "emcontact/output/monitors.hpp"
+#include "emcontact/output/parallel_hdf5.hpp"
 #include "emcontact/time/interrupt.hpp"
 #include "emcontact/time/stepper.hpp"
 
@@ -89,11 +91,18 @@ output::MonitorRow monitor_row(const fem::Discretization& disc, const time::Stat
   return r;
 }
 
-/// Rank 0's writers; other ranks only take part in the gathers.
+/// The MPI communicator of `comm` (MPI_COMM_SELF for a serial one).
+MPI_Comm raw_mpi_comm(const Comm& comm) {
+  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
+  return mpi != nullptr ? (*mpi->getRawMpiComm())() : MPI_COMM_SELF;
+}
+
+/// The monitors (rank 0), the fields (every rank its block of rows: node_rows, tet_rows) and the
+/// checkpoints' gather to rank 0 (dofs).
 struct Writers {
   std::unique_ptr<output::MonitorWriter> monitors;
   std::unique_ptr<output::FieldWriter> fields;
-  std::unique_ptr<RootGather> dofs, tets;
+  std::unique_ptr<RootGather> dofs, node_rows, tet_rows;
   int every = 0;
 
   void fields_frame(const fem::Discretization& disc, const time::State& s) {
@@ -102,9 +111,9 @@ struct Writers {
     output::FieldFrame f;
     f.step = s.step;
     f.time = s.t;
-    f.displacement = (*dofs)(*s.u);
-    f.velocity = (*dofs)(*s.V);
-    f.von_mises = (*tets)(*disc.von_mises(*s.u));
+    f.displacement = (*node_rows)(*s.u);
+    f.velocity = (*node_rows)(*s.V);
+    f.von_mises = (*tet_rows)(*disc.von_mises(*s.u));
     // per node contact status and normal force, packed in the x and y dofs of a dof vector
     Vector c(disc.owned_map());
     {
@@ -118,33 +127,48 @@ struct Writers {
         h(l + 2, 0) = k < s.contact_slip.size() ? s.contact_slip[k] : 0;
       }
     }
-    const auto packed = (*dofs)(c);
+    const auto packed = (*node_rows)(c);
     for (std::size_t n = 0; 3 * n < packed.size(); ++n) {
       f.contact_status.push_back(packed[3 * n]);
       f.normal_force.push_back(packed[3 * n + 1]);
       f.slip.push_back(packed[3 * n + 2]);
     }
-    if (fields) fields->write(f);
+    fields->write(f);
   }
 };
 
-/// The writers into `dir` (rank 0) and the gathers (every rank); `dofs` is built before, for
-/// the restart.
+/// The field writer of every rank, each with its block of rows of mesh.h5 and the frames
+/// (collective; writes mesh.h5).
+void make_field_writer(const fem::Discretization& disc, const OutputDirectory& dir, Writers& w) {
+  const auto& model = disc.model();
+  const auto layout =
+      output::FieldLayout::blocks(raw_mpi_comm(*disc.comm()), model.num_nodes(), model.num_tets());
+  w.node_rows = std::make_unique<RootGather>(disc.owned_map(), fem::dof_gid(layout.node_first, 0),
+                                             3 * layout.node_count);
+  w.tet_rows = std::make_unique<RootGather>(disc.element_map(), layout.tet_first, layout.tet_count);
+  // this rank's rows of the (still replicated) model
+  const auto n0 = static_cast<std::size_t>(layout.node_first);
+  const auto e0 = static_cast<std::size_t>(layout.tet_first);
+  const auto nn = static_cast<std::size_t>(layout.node_count);
+  const auto ne = static_cast<std::size_t>(layout.tet_count);
+  const std::vector<double> X(model.X.begin() + 3 * n0, model.X.begin() + 3 * (n0 + nn));
+  const std::vector<long long> tets(model.tets.begin() + 4 * e0,
+                                    model.tets.begin() + 4 * (e0 + ne));
+  const std::vector<int> body(model.body_of_tet.begin() + e0, model.body_of_tet.begin() + e0 + ne);
+  w.fields = std::make_unique<output::FieldWriter>(output::shared_directory(layout.comm, dir.dir()),
+                                                   layout, X, tets, body);
+}
+
+/// The writers into `dir` and the gathers (every rank); `dofs` is built before, for the restart.
 Writers make_writers(const fem::Discretization& disc, const OutputDirectory& dir, int every,
                      std::unique_ptr<RootGather> dofs) {
   Writers w;
   w.every = every;
-  const auto& model = disc.model();
-  const bool root = disc.comm()->getRank() == 0;
-  if (root) w.monitors = std::make_unique<output::MonitorWriter>(dir.dir(), "monitors.csv");
+  output::on_root(raw_mpi_comm(*disc.comm()), [&] {  // a refusal stops every rank
+    w.monitors = std::make_unique<output::MonitorWriter>(dir.dir(), "monitors.csv");
+  });
   w.dofs = std::move(dofs);
-  if (every > 0) {
-    w.tets = std::make_unique<RootGather>(disc.element_map(), model.num_tets());
-    if (root) {
-      std::vector<long long> tets(model.tets.begin(), model.tets.end());
-      w.fields = std::make_unique<output::FieldWriter>(dir.dir(), model.X, tets, model.body_of_tet);
-    }
-  }
+  if (every > 0) make_field_writer(disc, dir, w);
   return w;
 }
 

@@ -16,6 +16,7 @@
 #include "emcontact/error.hpp"
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/hdf5_file.hpp"
+#include "emcontact/output/parallel_hdf5.hpp"
 
 namespace emc::output {
 namespace {
@@ -79,44 +80,48 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
-/// One dataset to write: its name, shape, HDF5 types and the contiguous data.
-struct DatasetSpec {
-  const char* name;
-  std::vector<hsize_t> dims;  // empty = scalar
-  hid_t file_type;
-  hid_t mem_type;
-  const void* data;
-};
-
-/// Writes one contiguous (unchunked, uncompressed: fastest) dataset into `file`.
-void write_dataset(hid_t file, const std::string& path, const DatasetSpec& d) {
-  Handle space(d.dims.empty()
-                   ? H5Screate(H5S_SCALAR)
-                   : H5Screate_simple(static_cast<int>(d.dims.size()), d.dims.data(), nullptr),
-               H5Sclose);
-  if (!space.valid()) fail(path, std::string("dataspace of ") + d.name);
-  Handle set(
-      H5Dcreate2(file, d.name, d.file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-      H5Dclose);
-  if (!set.valid()) fail(path, std::string("creating dataset ") + d.name);
-  hsize_t count = 1;
-  for (hsize_t n : d.dims) count *= n;
+/// Writes one contiguous (unchunked, uncompressed: fastest) dataset, whole, into `file`.
+void write_dataset(hid_t file, const std::string& path, const SlabDataset& d) {
+  const hsize_t dims[2] = {d.rows, d.width};
+  Handle space(
+      d.width == 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(d.width == 1 ? 1 : 2, dims, nullptr),
+      H5Sclose);
+  if (!space.valid()) fail(path, "dataspace of " + d.name);
+  Handle set(H5Dcreate2(file, d.name.c_str(), d.file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                        H5P_DEFAULT),
+             H5Dclose);
+  if (!set.valid()) fail(path, "creating dataset " + d.name);
   // HDF5 refuses a null buffer even for zero elements: skip the (empty) write.
-  if (count > 0 && H5Dwrite(set.get(), d.mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.data) < 0) {
-    fail(path, std::string("writing dataset ") + d.name);
-  }
-  if (!set.reset()) fail(path, std::string("closing dataset ") + d.name);
+  const bool empty = d.width > 0 && d.rows == 0;
+  if (!empty && H5Dwrite(set.get(), d.mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, d.data) < 0)
+    fail(path, "writing dataset " + d.name);
+  if (!set.reset()) fail(path, "closing dataset " + d.name);
 }
 
-/// Writes `datasets` into a new HDF5 file `name` of `dir`, atomically (built in memory, then
-/// renamed).
-void write_hdf5_atomically(const Directory& dir, const std::string& name,
-                           const std::vector<DatasetSpec>& datasets) {
+/// Writes `datasets` into a new HDF5 file `name` of `dir`, atomically: on one rank built in
+/// memory, then renamed; on several, each rank's rows written in place into a temporary, then
+/// renamed (collective).
+void write_hdf5_atomically(const Directory& dir, const FieldLayout& layout, const std::string& name,
+                           const std::vector<SlabDataset>& datasets) {
   SilenceHdf5Errors quiet;
+  if (ranks_of(layout.comm) > 1) return write_hdf5_collectively(layout.comm, dir, name, datasets);
   const std::string path = dir.path(name);
   write_hdf5_file(dir, name, [&](hid_t file) {
-    for (const DatasetSpec& d : datasets) write_dataset(file, path, d);
+    for (const SlabDataset& d : datasets) write_dataset(file, path, d);
   });
+}
+
+/// A dataset of `rows` rows of `width` values (0: a scalar) of which this rank holds rows
+/// [first, first + count) in `data`.
+SlabDataset slab(const char* name, hid_t file_type, hid_t mem_type, long long rows, int width,
+                 long long first, long long count, const void* data) {
+  SlabDataset d{name, file_type, mem_type};
+  d.rows = static_cast<unsigned long long>(rows);
+  d.width = static_cast<unsigned long long>(width);
+  d.offset = static_cast<unsigned long long>(first);
+  d.count = static_cast<unsigned long long>(count);
+  d.data = data;
+  return d;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -190,54 +195,73 @@ Directory made_directory(const std::string& dir) {
 
 }  // namespace
 
+FieldLayout FieldLayout::blocks(MPI_Comm comm, long long nodes, long long tets) {
+  int rank = 0;
+  const int ranks = ranks_of(comm);
+  if (ranks > 1) MPI_Comm_rank(comm, &rank);
+  const Block n = block_of(nodes, rank, ranks), e = block_of(tets, rank, ranks);
+  return {comm, nodes, tets, n.first, n.count, e.first, e.count};
+}
+
 FieldWriter::FieldWriter(const std::string& dir, const std::vector<double>& X,
                          const std::vector<long long>& tets, const std::vector<int>& body_of_tet)
     : FieldWriter(made_directory(dir), X, tets, body_of_tet) {}
 
 FieldWriter::FieldWriter(Directory dir, const std::vector<double>& X,
                          const std::vector<long long>& tets, const std::vector<int>& body_of_tet)
-    : dir_(std::move(dir)) {
-  if (X.size() % 3 != 0) throw Error("FieldWriter: node coordinates are not 3 per node");
-  if (tets.size() % 4 != 0) throw Error("FieldWriter: tetrahedra are not 4 nodes each");
-  num_nodes_ = static_cast<long long>(X.size() / 3);
-  num_tets_ = static_cast<long long>(tets.size() / 4);
-  if (static_cast<long long>(body_of_tet.size()) != num_tets_) {
+    : FieldWriter(std::move(dir),
+                  FieldLayout::blocks(MPI_COMM_SELF, static_cast<long long>(X.size() / 3),
+                                      static_cast<long long>(tets.size() / 4)),
+                  X, tets, body_of_tet) {}
+
+FieldWriter::FieldWriter(Directory dir, const FieldLayout& layout, const std::vector<double>& X,
+                         const std::vector<long long>& tets, const std::vector<int>& body_of_tet)
+    : dir_(std::move(dir)), layout_(layout) {
+  const auto nodes = static_cast<std::size_t>(layout.node_count);
+  const auto elems = static_cast<std::size_t>(layout.tet_count);
+  if (X.size() != 3 * nodes) throw Error("FieldWriter: node coordinates are not 3 per node");
+  if (tets.size() != 4 * elems) throw Error("FieldWriter: tetrahedra are not 4 nodes each");
+  if (body_of_tet.size() != elems) {
     throw Error("FieldWriter: " + std::to_string(body_of_tet.size()) + " body ids for " +
-                std::to_string(num_tets_) + " tetrahedra");
+                std::to_string(elems) + " tetrahedra");
   }
-  const hsize_t n = static_cast<hsize_t>(num_nodes_), e = static_cast<hsize_t>(num_tets_);
-  write_hdf5_atomically(dir_, "mesh.h5",
-                        {{"/geometry", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, X.data()},
-                         {"/topology", {e, 4}, H5T_STD_I64LE, H5T_NATIVE_LLONG, tets.data()},
-                         {"/body", {e}, H5T_STD_I32LE, H5T_NATIVE_INT, body_of_tet.data()}});
+  const long long n = layout.num_nodes, e = layout.num_tets;
+  const long long n0 = layout.node_first, e0 = layout.tet_first;
+  write_hdf5_atomically(
+      dir_, layout_, "mesh.h5",
+      {slab("/geometry", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, 3, n0, nodes, X.data()),
+       slab("/topology", H5T_STD_I64LE, H5T_NATIVE_LLONG, e, 4, e0, elems, tets.data()),
+       slab("/body", H5T_STD_I32LE, H5T_NATIVE_INT, e, 1, e0, elems, body_of_tet.data())});
 }
 
 void FieldWriter::write(const FieldFrame& f) {
-  const auto n3 = static_cast<std::size_t>(3 * num_nodes_);
-  const auto e = static_cast<std::size_t>(num_tets_);
-  if (f.displacement.size() != n3 || f.velocity.size() != n3 || f.von_mises.size() != e) {
+  const auto nodes = static_cast<std::size_t>(layout_.node_count);
+  const auto elems = static_cast<std::size_t>(layout_.tet_count);
+  if (f.displacement.size() != 3 * nodes || f.velocity.size() != 3 * nodes ||
+      f.von_mises.size() != elems) {
     throw Error("FieldWriter: frame of step " + std::to_string(f.step) +
                 " has wrong sizes (displacement " + std::to_string(f.displacement.size()) +
                 ", velocity " + std::to_string(f.velocity.size()) + ", von_mises " +
-                std::to_string(f.von_mises.size()) + "; expected " + std::to_string(n3) + ", " +
-                std::to_string(n3) + ", " + std::to_string(e) + ")");
+                std::to_string(f.von_mises.size()) + "; expected " + std::to_string(3 * nodes) +
+                ", " + std::to_string(3 * nodes) + ", " + std::to_string(elems) + ")");
   }
-  const hsize_t n = static_cast<hsize_t>(num_nodes_);
+  const long long n = layout_.num_nodes, e = layout_.num_tets;
+  const long long n0 = layout_.node_first, e0 = layout_.tet_first;
   const long long step = f.step;
-  const std::vector<double> zeros(num_nodes_, 0.0);
-  const auto& status = f.contact_status.size() == n ? f.contact_status : zeros;
-  const auto& normal = f.normal_force.size() == n ? f.normal_force : zeros;
-  const auto& slip = f.slip.size() == n ? f.slip : zeros;
-  write_hdf5_atomically(
-      dir_, frame_file_name(f.step),
-      {{"/displacement", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.displacement.data()},
-       {"/velocity", {n, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.velocity.data()},
-       {"/von_mises", {e}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, f.von_mises.data()},
-       {"/contact_status", {n}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, status.data()},
-       {"/normal_force", {n}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, normal.data()},
-       {"/slip", {n}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, slip.data()},
-       {"/time", {}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &f.time},
-       {"/step", {}, H5T_STD_I64LE, H5T_NATIVE_LLONG, &step}});
+  const std::vector<double> zeros(nodes, 0.0);
+  const auto& status = f.contact_status.size() == nodes ? f.contact_status : zeros;
+  const auto& normal = f.normal_force.size() == nodes ? f.normal_force : zeros;
+  const auto& slip = f.slip.size() == nodes ? f.slip : zeros;
+  const hid_t F64 = H5T_IEEE_F64LE, D = H5T_NATIVE_DOUBLE;
+  write_hdf5_atomically(dir_, layout_, frame_file_name(f.step),
+                        {slab("/displacement", F64, D, n, 3, n0, nodes, f.displacement.data()),
+                         slab("/velocity", F64, D, n, 3, n0, nodes, f.velocity.data()),
+                         slab("/von_mises", F64, D, e, 1, e0, elems, f.von_mises.data()),
+                         slab("/contact_status", F64, D, n, 1, n0, nodes, status.data()),
+                         slab("/normal_force", F64, D, n, 1, n0, nodes, normal.data()),
+                         slab("/slip", F64, D, n, 1, n0, nodes, slip.data()),
+                         slab("/time", F64, D, 1, 0, 0, 1, &f.time),
+                         slab("/step", H5T_STD_I64LE, H5T_NATIVE_LLONG, 1, 0, 0, 1, &step)});
   // A step written again (e.g. the final frame) replaces its entry instead of duplicating it.
   auto same = std::find_if(frames_.begin(), frames_.end(),
                            [&](const auto& fr) { return fr.first == f.step; });
@@ -246,10 +270,14 @@ void FieldWriter::write(const FieldFrame& f) {
   } else {
     frames_.emplace_back(f.step, f.time);
   }
-  write_xdmf();
+  on_root(layout_.comm, [&] { write_xdmf(); });
 }
 
 void FieldWriter::resume(long step) {
+  on_root(layout_.comm, [&] { resume_root(step); });
+}
+
+void FieldWriter::resume_root(long step) {
   frames_.clear();
   for (const std::string& name : dir_.entries()) {
     const long s = frame_step(name);
@@ -267,7 +295,7 @@ void FieldWriter::resume(long step) {
 }
 
 void FieldWriter::write_xdmf() const {
-  const std::string n = std::to_string(num_nodes_), e = std::to_string(num_tets_);
+  const std::string n = std::to_string(layout_.num_nodes), e = std::to_string(layout_.num_tets);
   const char* in = "          ";  // DataItem indentation
   // The mesh parts are the same in every grid.
   const std::string topology =

@@ -1,6 +1,6 @@
 #pragma once
-// Moves owned vectors (dofs or elements) to and from rank 0 in global order: output fields and
-// checkpoints.
+// Moves owned vectors (dofs or elements) to and from contiguous blocks of global ids: to rank 0
+// whole (checkpoints), or to every rank's block of rows of the field files (FieldLayout).
 #include <vector>
 
 #include "emcontact/types.hpp"
@@ -9,15 +9,18 @@ namespace emc::app {
 
 class RootGather {
  public:
-  RootGather(Teuchos::RCP<const Map> owned, GO n_global) {
+  /// Every one of the n_global ids on rank 0.
+  RootGather(Teuchos::RCP<const Map> owned, GO n_global)
+      : RootGather(owned, 0, owned->getComm()->getRank() == 0 ? n_global : 0) {}
+  /// Ids [first, first + count) on this rank (the ranks' blocks cover the owned ids once).
+  RootGather(Teuchos::RCP<const Map> owned, GO first, GO count) {
     const auto invalid = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-    std::vector<GO> ids;
-    if (owned->getComm()->getRank() == 0)
-      for (GO g = 0; g < n_global; ++g) ids.push_back(g);
+    std::vector<GO> ids(static_cast<std::size_t>(count));
+    for (GO k = 0; k < count; ++k) ids[k] = first + k;
     root_ = Teuchos::rcp(new Map(invalid, Teuchos::ArrayView<const GO>(ids), 0, owned->getComm()));
     import_ = Teuchos::rcp(new Import(owned, root_));
   }
-  /// Every entry on rank 0 (empty elsewhere).
+  /// This rank's block of entries (rank 0's: every entry, with the first constructor).
   std::vector<double> operator()(const Vector& v) const {
     Vector r(root_);
     r.doImport(v, *import_, Tpetra::INSERT);

@@ -1,6 +1,9 @@
 #pragma once
-// Field output: HDF5 files with an XDMF index that ParaView opens as a time series. Rank 0
-// writes arrays already gathered in global node / element order.
+// Field output: HDF5 files with an XDMF index that ParaView opens as a time series, in global
+// node / element order. On several ranks every rank writes its own block of rows of each array
+// (parallel HDF5, parallel_hdf5.hpp); rank 0 writes the index.
+#include <mpi.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,6 +12,17 @@
 
 namespace emc::output {
 
+/// The rows of the field files a rank writes: nodes [nodes.first, nodes.first + nodes.count) of
+/// num_nodes and tets likewise; a frame and the mesh arrays hold those rows only.
+struct FieldLayout {
+  MPI_Comm comm = MPI_COMM_SELF;  ///< the ranks writing together (one rank: MPI_COMM_SELF)
+  long long num_nodes = 0, num_tets = 0;
+  long long node_first = 0, node_count = 0, tet_first = 0, tet_count = 0;
+  /// This rank's contiguous block of `nodes` and `tets` rows among the ranks of `comm`.
+  static FieldLayout blocks(MPI_Comm comm, long long nodes, long long tets);
+};
+
+/// One output frame: this rank's rows (FieldLayout) of each field.
 struct FieldFrame {
   long step = 0;
   double time = 0;
@@ -23,23 +37,30 @@ struct FieldFrame {
 class FieldWriter {
  public:
   /// DIR/mesh.h5 (geometry X, topology tets, body id per tet) is written once here; every
-  /// file is written, listed and removed relative to `dir`.
+  /// file is written, listed and removed relative to `dir`. One rank: the whole arrays.
   FieldWriter(Directory dir, const std::vector<double>& X, const std::vector<long long>& tets,
               const std::vector<int>& body_of_tet);
+  /// Collective over layout.comm: each rank gives its rows of X, tets and body_of_tet and its
+  /// own descriptor of the output directory (shared_directory); rank 0 writes the index.
+  FieldWriter(Directory dir, const FieldLayout& layout, const std::vector<double>& X,
+              const std::vector<long long>& tets, const std::vector<int>& body_of_tet);
   /// The same in the directory named `dir` (created if missing).
   FieldWriter(const std::string& dir, const std::vector<double>& X,
               const std::vector<long long>& tets, const std::vector<int>& body_of_tet);
-  /// Writes DIR/fields_<step>.h5 atomically, then rewrites DIR/fields.xdmf atomically.
+  /// Writes DIR/fields_<step>.h5 atomically, then rewrites DIR/fields.xdmf atomically
+  /// (collective).
   void write(const FieldFrame& f);
   /// After a restart from `step`: lists the frames of DIR at steps <= `step` (their files
-  /// readable), removes the frame files after it (the earlier run's), rewrites fields.xdmf.
+  /// readable), removes the frame files after it (the earlier run's), rewrites fields.xdmf
+  /// (rank 0; collective).
   void resume(long step);
 
  private:
   Directory dir_;
-  long long num_nodes_ = 0, num_tets_ = 0;
+  FieldLayout layout_;
   std::vector<std::pair<long, double>> frames_;  // (step, time)
-  void write_xdmf() const;
+  void resume_root(long step);
+  void write_xdmf() const;  ///< rank 0: the frames listed in frames_
 };
 
 }  // namespace emc::output

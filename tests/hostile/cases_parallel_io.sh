@@ -1,0 +1,82 @@
+# Field files written by every rank together (parallel HDF5): the same arrays as one rank's,
+# the output directory held open by every rank, a kill leaving whole files only.
+
+# pio_fields_run DIR RANKS: the good box for 0.2 s with a frame every step into DIR.
+pio_fields_run() {
+  local out=$1 ranks=$2
+  local -a cmd=("$EMC")
+  [ "$ranks" -gt 1 ] && cmd=("${MPIRUN[@]}" -np "$ranks" "$EMC")
+  expect_exit 0 "${cmd[@]}" in.xml --set Time/end=0.2 --set Output/every=1 \
+    --set Output/progress=false --set Output/plot=false --output "$out"
+}
+
+# 2 and 3 ranks, each writing its block of rows, give the 1-rank files: the same mesh.h5, the
+# same frames to round-off in the element sums (1e-9 of each array's largest value), the same
+# index.
+hostile_two_and_three_ranks_write_the_fields_of_one() {
+  emc_good_input in.xml
+  pio_fields_run one 1 || return 1
+  pio_fields_run two 2 || return 1
+  "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.2 --set Output/every=1 \
+    --set Output/progress=false --set Output/plot=false --output three >last.out 2>last.err ||
+    { echo "3 ranks failed: $(tail -2 last.err)"; return 1; }
+  cmp -s one/fields.xdmf two/fields.xdmf && cmp -s one/fields.xdmf three/fields.xdmf ||
+    { echo "fields.xdmf differs"; return 1; }
+  /usr/bin/python3 - <<'PY'
+import glob, os, sys
+import h5py, numpy as np
+names = sorted(os.path.basename(f) for f in glob.glob('one/*.h5'))
+assert 'mesh.h5' in names and len(names) == 22, names  # mesh.h5 and frames 0..20
+for other in ('two', 'three'):
+    assert sorted(os.path.basename(f) for f in glob.glob(other + '/*.h5')) == names, other
+    for n in names:
+        a, b = h5py.File('one/' + n, 'r'), h5py.File(other + '/' + n, 'r')
+        assert sorted(a) == sorted(b), (other, n, sorted(a), sorted(b))
+        for k in a:
+            x, y = a[k][()], b[k][()]
+            assert a[k].dtype == b[k].dtype and np.shape(x) == np.shape(y), (other, n, k)
+            tol = 0 if n == 'mesh.h5' or k in ('step', 'time') else 1e-9 * max(np.max(np.abs(x)), 1e-300)
+            d = np.max(np.abs(x - y)) if np.size(x) else 0
+            if d > tol:
+                sys.exit('%s/%s:%s differs from 1 rank by %g (allowed %g)' % (other, n, k, d, tol))
+PY
+}
+
+# The output directory swapped for a link while 2 ranks write a frame every step: neither rank
+# writes through the link (each holds the directory open), the frames go on in the run's own
+# directory, and SIGTERM leaves whole files there.
+hostile_two_ranks_fields_not_written_through_a_swapped_directory() {
+  emc_good_input in.xml
+  mkdir victim
+  echo precious >victim/monitors.csv
+  "${MPIRUN[@]}" -np 2 "$EMC" in.xml --set Time/end=1000 --set Output/every=1 \
+    --set Output/progress=false --set Output/plot=false --output t >run.log 2>&1 &
+  local pid=$! i
+  for i in $(seq 600); do [ -s t/fields_00000002.h5 ] && break; sleep 0.1; done
+  [ -s t/fields_00000002.h5 ] || { kill -KILL $pid; echo "the run did not start"; return 1; }
+  ln -s victim t.old
+  /usr/bin/python3 - <<'PY' || { rm t.old && mv t t.old && ln -s victim t; }
+import ctypes
+libc = ctypes.CDLL(None, use_errno=True)
+AT_FDCWD, RENAME_EXCHANGE = -100, 2
+if libc.renameat2(AT_FDCWD, b"t", AT_FDCWD, b"t.old", RENAME_EXCHANGE) != 0:
+    raise OSError(ctypes.get_errno(), "renameat2")
+PY
+  local before
+  before=$(ls t.old | grep -c '^fields_0')
+  for i in $(seq 600); do [ "$(ls t.old | grep -c '^fields_0')" -gt $((before + 2)) ] && break; sleep 0.1; done
+  kill -TERM $pid
+  local rc=0
+  wait $pid || rc=$?
+  [ $rc -ne 0 ] || { echo "exit 0 after SIGTERM"; return 1; }
+  [ "$(ls -A victim)" = monitors.csv ] && [ "$(cat victim/monitors.csv)" = precious ] ||
+    { echo "written through the link: $(ls -A victim)"; return 1; }
+  [ "$(ls t.old | grep -c '^fields_0')" -gt $((before + 2)) ] ||
+    { echo "no frames after the swap: $(ls t.old | tail -3)"; return 1; }
+  ! ls -A t.old | grep -q '\.tmp\.' || { echo "temporaries left: $(ls -A t.old | grep '\.tmp\.')"; return 1; }
+  /usr/bin/python3 - <<'PY'
+import glob, h5py
+for f in glob.glob('t.old/fields_*.h5') + ['t.old/mesh.h5']:
+    h5py.File(f, 'r').close()  # every file whole
+PY
+}
