@@ -71,6 +71,9 @@ int main(int argc, char** argv) {
             "ranks)\n",
             s.contact_nodes, s.contact_remote, s.contact_bytes, s.contact_imports);
     }
+    const std::string memory = emc::app::gather_peak_memory(*comm);  // collective
+    if (root) std::printf("%s\n", memory.c_str());
+    std::fflush(stdout);
     Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, false);
     return 0;
   } catch (const emc::Error& e) {

@@ -2,6 +2,8 @@
 
 #include <sys/resource.h>
 
+#include <Teuchos_CommHelpers.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -143,6 +145,35 @@ std::string out_of_memory_message(const std::exception& e) {
          "; allowed: a coarser mesh (a larger Mesh/size), more memory, or more ranks on more "
          "machines (a direct solver needs more than the iterative ones)" +
          tail;
+}
+
+double peak_resident_bytes() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return 0;
+  return double(u.ru_maxrss) * 1024.0;  // Linux: kilobytes
+}
+
+std::string peak_memory_line(const std::vector<double>& bytes_per_rank) {
+  const auto mib = [](double b) { return std::to_string(std::llround(b / 1048576.0)); };
+  std::string line = "emcontact: peak resident memory per rank: ";
+  if (bytes_per_rank.size() <= 8) {
+    for (const double b : bytes_per_rank) line += mib(b) + " ";
+    return line + "MiB (rank 0 first)";
+  }
+  std::vector<double> sorted = bytes_per_rank;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
+  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  return line + "min " + mib(sorted.front()) + ", median " + mib(median) + ", max " +
+         mib(sorted.back()) + ", rank 0 " + mib(bytes_per_rank.front()) + " MiB (" +
+         std::to_string(n) + " ranks)";
+}
+
+std::string gather_peak_memory(const Comm& comm) {
+  const double mine = peak_resident_bytes();
+  std::vector<double> all(comm.getRank() == 0 ? comm.getSize() : 0);
+  Teuchos::gather(&mine, 1, all.data(), 1, 0, comm);
+  return comm.getRank() == 0 ? peak_memory_line(all) : std::string();
 }
 
 }  // namespace emc::app

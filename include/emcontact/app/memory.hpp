@@ -5,6 +5,9 @@
 // the meshes are built; and the one-line message of a run that ran out of memory anyway.
 #include <exception>
 #include <string>
+#include <vector>
+
+#include "emcontact/types.hpp"
 
 namespace emc::app {
 
@@ -51,5 +54,18 @@ bool is_out_of_memory(const std::exception& e);
 /// One line for a run that ran out of memory: the model noted (tets, nodes, ranks), the memory
 /// it needs and what was available, and what to change.
 std::string out_of_memory_message(const std::exception& e);
+
+/// This process's peak resident set so far (getrusage's ru_maxrss), in bytes.
+double peak_resident_bytes();
+
+/// The summary line of the ranks' peak resident sets (bytes, rank 0 first), in MiB (2^20
+/// bytes): "emcontact: peak resident memory per rank: 466 379 379 370 MiB (rank 0 first)" for
+/// up to 8 ranks; for more, "emcontact: peak resident memory per rank: min 370, median 379, max
+/// 466, rank 0 466 MiB (64 ranks)".
+std::string peak_memory_line(const std::vector<double>& bytes_per_rank);
+
+/// Gathers every rank's peak_resident_bytes to rank 0 (collective); its summary line on rank 0,
+/// "" elsewhere.
+std::string gather_peak_memory(const Comm& comm);
 
 }  // namespace emc::app
