@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "emcontact/app/memory.hpp"
+#include "emcontact/app/mesh_process.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/input/echo.hpp"
 #include "emcontact/mesh/generate.hpp"
@@ -127,7 +128,9 @@ std::vector<mesh::BodyMesh> build_meshes(const Teuchos::ParameterList& params,
   std::string error;
   if (comm.getRank() == 0) {
     try {
-      meshes = build_on_root(bodies, input_dir, file, comm, local_ranks);
+      // in a child process: Gmsh's peak memory is not rank 0's
+      meshes = build_in_child_process(
+          [&] { return build_on_root(bodies, input_dir, file, comm, local_ranks); });
     } catch (const std::exception& e) {
       error = is_out_of_memory(e) ? out_of_memory_message(e) : e.what();
       if (error.empty()) error = "mesh generation failed";

@@ -95,11 +95,11 @@ bool select_rows(const SlabDataset& d, int rank, hid_t file_space, hid_t mem_spa
 /// reason in `error`.
 bool write_slab(hid_t file, hid_t dxpl, const SlabDataset& d, int rank, std::string& error) {
   const hsize_t dims[2] = {d.rows, d.width};
-  Handle space(d.width == 0 ? H5Screate(H5S_SCALAR)
-                            : H5Screate_simple(d.width == 1 ? 1 : 2, dims, nullptr),
-               H5Sclose);
-  Handle set(space.valid() ? H5Dcreate2(file, d.name.c_str(), d.file_type, space.get(),
-                                        H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)
+  Handle space(
+      d.width == 0 ? H5Screate(H5S_SCALAR) : H5Screate_simple(d.width == 1 ? 1 : 2, dims, nullptr),
+      H5Sclose);
+  Handle set(space.valid() ? H5Dcreate2(file, d.name.c_str(), d.file_type, space.get(), H5P_DEFAULT,
+                                        H5P_DEFAULT, H5P_DEFAULT)
                            : H5I_INVALID_HID,
              H5Dclose);
   Handle mem(memory_space(d), H5Sclose);

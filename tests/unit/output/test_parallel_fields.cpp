@@ -93,7 +93,8 @@ Raw read_raw(const std::string& path, const char* name) {
   r.cls = H5Tget_class(type);
   r.size = H5Tget_size(type);
   r.bytes.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)) * r.size);
-  if (!r.bytes.empty()) EXPECT_GE(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.bytes.data()), 0);
+  if (!r.bytes.empty())
+    EXPECT_GE(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.bytes.data()), 0);
   H5Tclose(type);
   H5Sclose(space);
   H5Dclose(set);
@@ -115,10 +116,9 @@ void expect_same_files(const FakeMesh& m) {
   const auto l = FieldLayout::blocks(MPI_COMM_WORLD, m.num_nodes(), m.num_tets());
   {
     const Directory root_dir = rank() == 0 ? Directory(par) : Directory();
-    FieldWriter w(shared_directory(MPI_COMM_WORLD, root_dir), l,
-                  rows(m.X, l.node_first, l.node_count, 3),
-                  rows(m.tets, l.tet_first, l.tet_count, 4),
-                  rows(m.body, l.tet_first, l.tet_count, 1));
+    FieldWriter w(
+        shared_directory(MPI_COMM_WORLD, root_dir), l, rows(m.X, l.node_first, l.node_count, 3),
+        rows(m.tets, l.tet_first, l.tet_count, 4), rows(m.body, l.tet_first, l.tet_count, 1));
     for (long step : {0L, 5L}) w.write(my_rows(frame(m, step), l));
   }
   if (rank() == 0) {
