@@ -76,7 +76,8 @@ TEST(Partition, EveryTetInOnePartEveryNodeOwnedByItsLowestUser) {
   // the owner: the lowest rank with a tet touching the node, on every rank the same
   std::vector<int> owner(m.num_nodes(), INT_MAX);
   for (int e = 0; e < m.num_tets(); ++e)
-    for (int a = 0; a < 4; ++a) owner[m.tets[4 * e + a]] = std::min(owner[m.tets[4 * e + a]], part[e]);
+    for (int a = 0; a < 4; ++a)
+      owner[m.tets[4 * e + a]] = std::min(owner[m.tets[4 * e + a]], part[e]);
   for (int n = 0; n < m.num_nodes(); ++n)
     EXPECT_EQ(p.node_owner[n], owner[n] == INT_MAX ? -1 : owner[n]) << "node " << n;
   // owned + shared: exactly the nodes of my tets, split by owner, sorted
