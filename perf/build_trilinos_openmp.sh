@@ -53,7 +53,7 @@ cmake -S src -B build -G Ninja \
   -DTrilinos_ENABLE_Teuchos=ON -DTrilinos_ENABLE_Kokkos=ON -DTrilinos_ENABLE_KokkosKernels=ON \
   -DTrilinos_ENABLE_Tpetra=ON -DTrilinos_ENABLE_Belos=ON -DTrilinos_ENABLE_Ifpack2=ON \
   -DTrilinos_ENABLE_Amesos2=ON -DTrilinos_ENABLE_Epetra=OFF -DTrilinos_ENABLE_MueLu=OFF \
-  -DTrilinos_ENABLE_Zoltan2=OFF -DTrilinos_ENABLE_Xpetra=OFF \
+  -DTrilinos_ENABLE_Zoltan2=ON -DTrilinos_ENABLE_Xpetra=ON \
   -DTrilinos_ENABLE_EXPLICIT_INSTANTIATION=ON \
   -DTpetra_INST_SERIAL=OFF -DTpetra_INST_OPENMP=ON \
   -DTpetra_INST_INT_INT=OFF -DTpetra_INST_INT_LONG=OFF -DTpetra_INST_INT_LONG_LONG=ON \

@@ -10,6 +10,8 @@ namespace emc {
 
 /// Every rank's doubles, concatenated in rank order, on every rank (MPI_Allgatherv).
 std::vector<double> allgather(const Comm& comm, const std::vector<double>& mine);
+/// Every rank's ints, concatenated in rank order, on every rank (MPI_Allgatherv).
+std::vector<int> allgather(const Comm& comm, const std::vector<int>& mine);
 
 /// Rank 0's vector (trivially copyable elements) on every rank, in chunks below INT_MAX bytes.
 template <class T>

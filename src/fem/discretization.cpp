@@ -14,7 +14,7 @@ using Teuchos::rcp;
 
 Discretization::Discretization(const Model& model, RCP<const Comm> comm)
     : model_(model), comm_(comm) {
-  part_ = partition(model_, comm_->getRank(), comm_->getSize());
+  part_ = partition(model_, comm_);
   build_maps();
   build_element_data();
   build_moved_mass();
