@@ -39,7 +39,7 @@ def per_rank_mib(line):
 def emcontact(build, ranks, args, out):
     cmd = []
     if ranks > 1:
-        cmd += ['mpirun', '--oversubscribe', '--bind-to', 'none', '-np', str(ranks)]
+        cmd += ['mpirun', '--oversubscribe', '--mca', 'mpi_yield_when_idle', '1', '--bind-to', 'none', '-np', str(ranks)]
     cmd += [os.path.join(build, 'bin', 'emcontact')] + args + [
         '--output', out, '--overwrite', '--set', 'Output/plot=false', '--set', 'Output/progress=false']
     p = subprocess.run(cmd, capture_output=True, text=True, env=ENV, cwd=ROOT)

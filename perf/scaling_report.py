@@ -37,7 +37,7 @@ def run(build, size, ranks, steps, phase, threads=None, preconditioner=None):
     out = os.path.join('out', 'scaling_%s_%s_np%d_t%s' % (phase, size, ranks, threads or 0))
     cmd = ['/usr/bin/time', '-v']
     if ranks > 1:
-        cmd += ['mpirun', '--oversubscribe', '--bind-to', 'none', '-np', str(ranks)]
+        cmd += ['mpirun', '--oversubscribe', '--mca', 'mpi_yield_when_idle', '1', '--bind-to', 'none', '-np', str(ranks)]
     cmd += [os.path.join(build, 'bin', 'emcontact'), 'inputs/ball.xml', '--output', out, '--overwrite',
             '--set', 'Bodies/ball/Mesh/size=%s' % size, '--set', 'Time/end=%g' % (steps * 0.001),
             '--set', 'Output/every=0', '--set', 'Output/plot=false', '--set', 'Output/progress=false']
