@@ -80,3 +80,26 @@ for f in glob.glob('t.old/fields_*.h5') + ['t.old/mesh.h5']:
     h5py.File(f, 'r').close()  # every file whole
 PY
 }
+
+# The last command wrote one error line (mpiexec adds its own report of the exit code).
+pio_one_error_line() {
+  [ "$(grep -c '^error:' last.err)" = 1 ] || { echo "not one error line:"; head -5 last.err; return 1; }
+}
+
+# A checkpoint written on 2 ranks, restarted on 3 with another mesh (a longer block) or another
+# material: refused before anything is written, one line, on every rank count alike.
+hostile_checkpoint_of_two_ranks_for_another_model_refused_on_three() {
+  emc_good_input in.xml
+  "${MPIRUN[@]}" -np 2 "$EMC" in.xml --set "Output/checkpoint every=1" --set Output/every=1 \
+    --set Output/progress=false --set Output/plot=false --output ck >ck.log 2>&1 ||
+    { echo "the 2-rank run failed: $(tail -2 ck.log)"; return 1; }
+  local before
+  before=$(cd ck && ls -l --time-style=+%s.%N | md5sum)
+  expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set "Bodies/block/Mesh/upper corner={0.2, 0.1, 0.1}" \
+    --set Time/end=0.05 --set Output/progress=false --restart ck/checkpoint.h5 || return 1
+  expect_err "ck/checkpoint\.h5: written for another model" && pio_one_error_line || return 1
+  expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Bodies/block/Material/young=2e5 \
+    --set Time/end=0.05 --set Output/progress=false --restart ck/checkpoint.h5 || return 1
+  expect_err "written for another model.*young" && pio_one_error_line || return 1
+  [ "$(cd ck && ls -l --time-style=+%s.%N | md5sum)" = "$before" ] || { echo "ck/ changed"; return 1; }
+}
