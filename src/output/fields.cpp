@@ -17,68 +17,22 @@
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/hdf5_file.hpp"
 #include "emcontact/output/parallel_hdf5.hpp"
+#include "hdf5_util.hpp"
 
 namespace emc::output {
 namespace {
 
+using detail::Handle;
+using detail::hdf5_error_text;
+using detail::SilenceHdf5Errors;
+
 // ---------------------------------------------------------------------------------------------
 // HDF5 helpers
-
-/// Silences HDF5's automatic error printing while alive (errors are reported by exceptions).
-class SilenceHdf5Errors {
- public:
-  SilenceHdf5Errors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~SilenceHdf5Errors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  SilenceHdf5Errors(const SilenceHdf5Errors&) = delete;
-  SilenceHdf5Errors& operator=(const SilenceHdf5Errors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-/// Walks the HDF5 error stack; keeps the innermost description, which for file errors holds
-/// the OS error text ("errno = 2, error message = 'No such file or directory'").
-herr_t keep_innermost(unsigned /*n*/, const H5E_error2_t* e, void* client) {
-  if (e->desc != nullptr && e->desc[0] != '\0') *static_cast<std::string*>(client) = e->desc;
-  return 0;
-}
-
-/// The current HDF5 error as text (then clears the stack).
-std::string hdf5_error_text() {
-  std::string text;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, keep_innermost, &text);
-  H5Eclear2(H5E_DEFAULT);
-  return text.empty() ? "unknown HDF5 error" : text;
-}
 
 /// Throws emc::Error naming `path` and what failed.
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw Error("cannot write HDF5 file '" + path + "': " + what + ": " + hdf5_error_text());
 }
-
-/// Owns an HDF5 id; closes it with the matching H5?close on scope exit.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~Handle() { reset(); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  /// Closes now; returns false if HDF5 reported an error (e.g. a failed flush on H5Fclose).
-  bool reset() {
-    const hid_t id = std::exchange(id_, H5I_INVALID_HID);
-    return id < 0 || close_(id) >= 0;
-  }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
 
 /// Writes one contiguous (unchunked, uncompressed: fastest) dataset, whole, into `file`.
 void write_dataset(hid_t file, const std::string& path, const SlabDataset& d) {

@@ -9,9 +9,13 @@
 #include "emcontact/error.hpp"
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/safe_temp.hpp"
+#include "hdf5_util.hpp"
 
 namespace emc::output {
 namespace {
+
+using detail::Handle;
+using detail::hdf5_error_text;
 
 int rank_of(MPI_Comm comm) {
   int r = 0;
@@ -41,38 +45,6 @@ std::string first_error(MPI_Comm comm, const std::string& error) {
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
   return first == INT_MAX ? std::string() : broadcast(comm, error, first);
 }
-
-/// Walks the HDF5 error stack; keeps the innermost description (for file errors the OS's).
-herr_t keep_innermost(unsigned /*n*/, const H5E_error2_t* e, void* client) {
-  if (e->desc != nullptr && e->desc[0] != '\0') *static_cast<std::string*>(client) = e->desc;
-  return 0;
-}
-
-std::string hdf5_error_text() {
-  std::string text;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, keep_innermost, &text);
-  H5Eclear2(H5E_DEFAULT);
-  return text.empty() ? "unknown HDF5 error" : text;
-}
-
-/// Owns an HDF5 id; closes it with the matching H5?close on scope exit.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~Handle() { reset(); }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-  bool reset() {
-    const hid_t id = std::exchange(id_, H5I_INVALID_HID);
-    return id < 0 || close_(id) >= 0;
-  }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
 
 /// The memory dataspace of this rank's rows of `d` (a scalar's, or one row when it has none).
 hid_t memory_space(const SlabDataset& d) {
