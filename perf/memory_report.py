@@ -2,7 +2,7 @@
 """Memory per MPI rank: each rank's peak resident set (the line "emcontact: peak resident memory
 per rank: ..." every successful run prints) for the ball (inputs/ball.xml) on 1, 2, 4 and 8
 (oversubscribed) ranks, against the libraries' own footprint (the baseline: the tumbling box, 920 tets, one step, on
-2 ranks: rank 0's peak, which includes Gmsh, and the other rank's). The ball runs the `impact` phase of scaling_report.py (centre 5 mm above the ground,
+2 ranks: rank 0's peak and the other rank's). The ball runs the `impact` phase of scaling_report.py (centre 5 mm above the ground,
 (2, 0, -3) m/s): two steps, the first in flight, the second with contact, with a field frame
 written at every step (Output/every = 1, so that the output's gathers to rank 0 are measured).
 For each run: the peak per rank, (peak - baseline) per rank (rank 0's baseline for rank 0, the
@@ -120,8 +120,8 @@ def write(results, baseline, steps, argv):
           '`scaling_report.py`: %d steps, the first in flight, the second with contact; a field frame at every step; '
           'Belos GMRES + ILU(0), Kokkos Serial). Peak resident memory per rank from the run\'s line "emcontact: peak '
           'resident memory per rank", in MiB, rank 0 first. Baseline: the tumbling box (`inputs/tumbling_box.xml`, '
-          '920 tets, one step) on 2 ranks, the libraries\' own footprint: %d MiB on rank 0 (which also starts Gmsh '
-          'and writes the output), %d MiB on the other rank; "peak - baseline" takes rank 0\'s for rank 0 and the '
+          '920 tets, one step) on 2 ranks, the libraries\' own footprint: %d MiB on rank 0, '
+          '%d MiB on the other rank; "peak - baseline" takes rank 0\'s for rank 0 and the '
           'other\'s for the others. Ideal: baseline + (1-rank peak - rank 0\'s baseline) / N (rank 0\'s, then the '
           'others\'). Bytes per tet per rank: (peak - baseline) / tets. Times: set-up and seconds per step of '
           'the summary line, output seconds of the timer `emcontact: output` (maximum over ranks, whole run). The '
