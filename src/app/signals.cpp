@@ -9,11 +9,12 @@
 namespace emc::app {
 namespace {
 
-enum Phase : int { kStarting, kSetup, kTimeLoop };
+enum Phase : int { kStarting, kSetup, kTimeLoop, kEnding };
 
 volatile std::sig_atomic_t g_rank = 0;
 volatile std::sig_atomic_t g_phase = kStarting;
-volatile std::sig_atomic_t g_held = 0;  ///< a signal that came while starting
+volatile std::sig_atomic_t g_held = 0;       ///< a signal that came while starting
+volatile std::sig_atomic_t g_exit_code = 1;  ///< the exit code of a run ending with an error
 
 constexpr char kTerm[] =
     "error: stopped by SIGTERM during setup (before the first step: nothing to restart from)\n";
@@ -36,6 +37,7 @@ constexpr char kHup[] =
 }
 
 extern "C" void on_stop_signal(int signal) {
+  if (g_phase == kEnding) _exit(g_exit_code);  // its error is said already: no second line
   if (g_phase == kTimeLoop) {
     time::stop_flag() = signal;
   } else if (g_phase == kStarting) {
@@ -73,6 +75,11 @@ void stop_handlers_ready(int rank) {
 
 void signals_stop_time_loop() {
   g_phase = kTimeLoop;
+}
+
+void signals_ending(int code) {
+  g_exit_code = code;
+  g_phase = kEnding;
 }
 
 }  // namespace emc::app

@@ -15,5 +15,9 @@ void install_stop_handlers();
 void stop_handlers_ready(int rank);
 /// From now on the signals stop the time loop (a checkpoint) instead of ending the run at once.
 void signals_stop_time_loop();
+/// The run ends with an error being reported (exit `code`): a signal from now on ends it at
+/// once with that code and says nothing (mpiexec stops the other ranks with SIGTERM as soon as
+/// one has exited non-zero; rank 0's one line must stay the only one).
+void signals_ending(int code);
 
 }  // namespace emc::app
