@@ -1,5 +1,7 @@
 #pragma once
 // Small collective helpers shared by the modules.
+#include <mpi.h>
+
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 #include <vector>
@@ -7,6 +9,9 @@
 #include "emcontact/types.hpp"
 
 namespace emc {
+
+/// The MPI communicator of `comm`; MPI_COMM_SELF for a serial Teuchos communicator (one rank).
+MPI_Comm raw_comm(const Comm& comm);
 
 /// Every rank's doubles, concatenated in rank order, on every rank (MPI_Allgatherv).
 std::vector<double> allgather(const Comm& comm, const std::vector<double>& mine);

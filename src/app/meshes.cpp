@@ -1,7 +1,6 @@
 #include "emcontact/app/meshes.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_DefaultMpiComm.hpp>
 #include <cstdio>
 
 #include "emcontact/app/memory.hpp"
@@ -41,10 +40,9 @@ void bcast_mesh(const Comm& comm, mesh::BodyMesh& m) {
 
 /// The number of ranks of `comm` on this machine (collective).
 int ranks_on_node(const Comm& comm) {
-  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
-  if (!mpi) return 1;
+  if (comm.getSize() == 1) return 1;
   MPI_Comm local;
-  MPI_Comm_split_type(*mpi->getRawMpiComm(), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
+  MPI_Comm_split_type(raw_comm(comm), MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &local);
   int n = 1;
   MPI_Comm_size(local, &n);
   MPI_Comm_free(&local);

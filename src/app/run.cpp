@@ -3,7 +3,6 @@
 #include "emcontact/app/run.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
 #include <cmath>
@@ -31,6 +30,7 @@
 #include "emcontact/output/fields.hpp"
 #include "emcontact/output/monitors.hpp"
 #include "emcontact/output/parallel_hdf5.hpp"
+#include "emcontact/parallel.hpp"
 #include "emcontact/time/interrupt.hpp"
 #include "emcontact/time/stepper.hpp"
 
@@ -91,12 +91,6 @@ output::MonitorRow monitor_row(const fem::Discretization& disc, const time::Stat
   return r;
 }
 
-/// The MPI communicator of `comm` (MPI_COMM_SELF for a serial one).
-MPI_Comm raw_mpi_comm(const Comm& comm) {
-  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
-  return mpi != nullptr ? (*mpi->getRawMpiComm())() : MPI_COMM_SELF;
-}
-
 /// The monitors (rank 0), the fields (every rank its block of rows: node_rows, tet_rows) and the
 /// checkpoints' gather to rank 0 (dofs).
 struct Writers {
@@ -142,7 +136,7 @@ struct Writers {
 void make_field_writer(const fem::Discretization& disc, const OutputDirectory& dir, Writers& w) {
   const auto& model = disc.model();
   const auto layout =
-      output::FieldLayout::blocks(raw_mpi_comm(*disc.comm()), model.num_nodes(), model.num_tets());
+      output::FieldLayout::blocks(raw_comm(*disc.comm()), model.num_nodes(), model.num_tets());
   w.node_rows = std::make_unique<RootGather>(disc.owned_map(), fem::dof_gid(layout.node_first, 0),
                                              3 * layout.node_count);
   w.tet_rows = std::make_unique<RootGather>(disc.element_map(), layout.tet_first, layout.tet_count);
@@ -164,7 +158,7 @@ Writers make_writers(const fem::Discretization& disc, const OutputDirectory& dir
                      std::unique_ptr<RootGather> dofs) {
   Writers w;
   w.every = every;
-  output::on_root(raw_mpi_comm(*disc.comm()), [&] {  // a refusal stops every rank
+  output::on_root(raw_comm(*disc.comm()), [&] {  // a refusal stops every rank
     w.monitors = std::make_unique<output::MonitorWriter>(dir.dir(), "monitors.csv");
   });
   w.dofs = std::move(dofs);

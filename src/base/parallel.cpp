@@ -4,19 +4,23 @@
 
 namespace emc {
 
+MPI_Comm raw_comm(const Comm& comm) {
+  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
+  return mpi != nullptr ? (*mpi->getRawMpiComm())() : MPI_COMM_SELF;
+}
+
 namespace {
 
 template <class T>
 std::vector<T> allgather_as(const Comm& comm, const std::vector<T>& mine, MPI_Datatype type) {
-  const auto& mpi = dynamic_cast<const Teuchos::MpiComm<int>&>(comm);
   const int np = comm.getSize();
   int n = static_cast<int>(mine.size());
   std::vector<int> counts(np), displs(np, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, *mpi.getRawMpiComm());
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, raw_comm(comm));
   for (int p = 1; p < np; ++p) displs[p] = displs[p - 1] + counts[p - 1];
   std::vector<T> all(displs[np - 1] + counts[np - 1]);
   MPI_Allgatherv(mine.data(), n, type, all.data(), counts.data(), displs.data(), type,
-                 *mpi.getRawMpiComm());
+                 raw_comm(comm));
   return all;
 }
 
@@ -35,7 +39,6 @@ std::vector<int> allgather(const Comm& comm, const std::vector<int>& mine) {
 namespace emc {
 
 std::vector<int> exchange_ints(const Comm& comm, const std::vector<std::vector<int>>& sends) {
-  const auto& mpi = dynamic_cast<const Teuchos::MpiComm<int>&>(comm);
   const int np = comm.getSize();
   std::vector<int> scount(np), rcount(np), sdispl(np, 0), rdispl(np, 0), flat;
   for (int p = 0; p < np; ++p) {
@@ -43,11 +46,11 @@ std::vector<int> exchange_ints(const Comm& comm, const std::vector<std::vector<i
     sdispl[p] = static_cast<int>(flat.size());
     flat.insert(flat.end(), sends[p].begin(), sends[p].end());
   }
-  MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, *mpi.getRawMpiComm());
+  MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, raw_comm(comm));
   for (int p = 1; p < np; ++p) rdispl[p] = rdispl[p - 1] + rcount[p - 1];
   std::vector<int> got(rdispl[np - 1] + rcount[np - 1]);
   MPI_Alltoallv(flat.data(), scount.data(), sdispl.data(), MPI_INT, got.data(), rcount.data(),
-                rdispl.data(), MPI_INT, *mpi.getRawMpiComm());
+                rdispl.data(), MPI_INT, raw_comm(comm));
   return got;
 }
 

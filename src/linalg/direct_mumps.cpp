@@ -5,7 +5,6 @@
 #include <mpi.h>
 
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "emcontact/linalg/linear_solver.hpp"
+#include "emcontact/parallel.hpp"
 
 // indices as in the MUMPS users' guide (1-based)
 #define ICNTL(I) icntl[(I)-1]
@@ -23,12 +23,6 @@ namespace {
 
 using Teuchos::RCP;
 using Teuchos::rcp;
-
-MPI_Comm raw_comm(const RCP<const Comm>& comm) {
-  const auto mpi = Teuchos::rcp_dynamic_cast<const Teuchos::MpiComm<int>>(comm);
-  if (!mpi.is_null()) return (*mpi->getRawMpiComm())();
-  return MPI_COMM_SELF;  // a serial Teuchos communicator: one rank
-}
 
 /// What the common INFOG(1) codes of the MUMPS users' guide mean.
 const char* meaning(int code) {
@@ -83,7 +77,7 @@ DirectMumps::DirectMumps(const RCP<const Comm>& comm) : s_(std::make_shared<Stat
   id.job = -1;
   id.par = 1;  // the host works too
   id.sym = 0;  // general (the Newton matrix is non-symmetric in general)
-  id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(raw_comm(comm)));
+  id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(raw_comm(*comm)));
   dmumps_c(&id);
   if (id.INFOG(1) < 0) throw LinearSolveError("MUMPS initialisation failed");
   id.ICNTL(1) = -1;  // no output: errors become LinearSolveError
