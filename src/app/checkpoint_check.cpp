@@ -16,8 +16,7 @@ namespace {
 
 template <class T>
 void hash_into(std::uint64_t& h, const std::vector<T>& v) {
-  const auto* p = reinterpret_cast<const unsigned char*>(v.data());
-  for (std::size_t i = 0; i < v.size() * sizeof(T); ++i) h = (h ^ p[i]) * 1099511628211ull;
+  fem::fnv_into(h, v);
 }
 
 std::string hex(std::uint64_t h) {
@@ -176,16 +175,14 @@ std::string model_fingerprint(const Simulation& sim) {
   const auto& m = sim.model;
   std::ostringstream os;
   os.precision(17);
-  os << "nodes: " << m.num_nodes() << "\ntets: " << m.num_tets()
+  os << "nodes: " << m.num_nodes() << "\ntets: " << m.global_tets
      << "\nrigid nodes: " << m.rigid_X.size() / 3 << "\nintegrator: " << int(m.integrator)
      << "\nbodies: " << m.bodies.size() << "\n";
   for (const auto& b : m.bodies)
     os << "body " << b.name << ": nodes " << b.node_end - b.node_begin << ", tets "
        << b.tet_end - b.tet_begin << ", rigid " << b.rigid << ", young " << b.young << ", poisson "
        << b.poisson << ", density " << b.density << "\n";
-  std::uint64_t h = 14695981039346656037ull;
-  hash_into(h, m.X);
-  hash_into(h, m.tets);
+  std::uint64_t h = m.mesh_fnv;  // X and the tets, hashed where they were all held (rank 0)
   hash_into(h, m.rigid_X);
   hash_into(h, m.fixed);
   if (sim.contact) {

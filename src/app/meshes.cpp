@@ -20,9 +20,16 @@ void bcast_string(const Comm& comm, std::string& s) {
   s.assign(v.begin(), v.end());
 }
 
+/// Rank 0's mesh m to every rank, but for the tetrahedra: the others get their count and
+/// boundary triangles (fem::distribute later hands each rank its part of them).
 void bcast_mesh(const Comm& comm, mesh::BodyMesh& m) {
   broadcast_vector(comm, m.X);
-  broadcast_vector(comm, m.tets);
+  long long tets = m.body_tets();
+  Teuchos::broadcast(comm, 0, 1, &tets);
+  if (comm.getRank() == 0 && m.boundary.empty() && tets > 0)
+    m.boundary = mesh::boundary_triangles(m);
+  broadcast_vector(comm, m.boundary);
+  if (comm.getRank() != 0 && tets > 0) m.dropped_tets = static_cast<int>(tets);
   long long ns = static_cast<long long>(m.surfaces.size());
   Teuchos::broadcast(comm, 0, 1, &ns);
   auto it = m.surfaces.begin();
@@ -142,7 +149,7 @@ std::vector<mesh::BodyMesh> build_meshes(const Teuchos::ParameterList& params,
   long long tets = 0, nodes = 0;
   for (auto& m : meshes) {
     bcast_mesh(comm, m);
-    tets += m.num_tets();
+    tets += m.body_tets();
     nodes += m.num_nodes();
   }
   note_model_size(tets, nodes, comm.getSize(), local_ranks);

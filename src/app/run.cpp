@@ -136,19 +136,32 @@ struct Writers {
 void make_field_writer(const fem::Discretization& disc, const OutputDirectory& dir, Writers& w) {
   const auto& model = disc.model();
   const auto layout =
-      output::FieldLayout::blocks(raw_comm(*disc.comm()), model.num_nodes(), model.num_tets());
+      output::FieldLayout::blocks(raw_comm(*disc.comm()), model.num_nodes(), model.global_tets);
   w.node_rows = std::make_unique<RootGather>(disc.owned_map(), fem::dof_gid(layout.node_first, 0),
                                              3 * layout.node_count);
   w.tet_rows = std::make_unique<RootGather>(disc.element_map(), layout.tet_first, layout.tet_count);
-  // this rank's rows of the (still replicated) model
+  // this rank's rows: the nodes' coordinates (on every rank), the tets (4 nodes and the body
+  // of each) from the ranks that own them
   const auto n0 = static_cast<std::size_t>(layout.node_first);
-  const auto e0 = static_cast<std::size_t>(layout.tet_first);
   const auto nn = static_cast<std::size_t>(layout.node_count);
-  const auto ne = static_cast<std::size_t>(layout.tet_count);
   const std::vector<double> X(model.X.begin() + 3 * n0, model.X.begin() + 3 * (n0 + nn));
-  const std::vector<long long> tets(model.tets.begin() + 4 * e0,
-                                    model.tets.begin() + 4 * (e0 + ne));
-  const std::vector<int> body(model.body_of_tet.begin() + e0, model.body_of_tet.begin() + e0 + ne);
+  std::vector<long long> tets(4 * static_cast<std::size_t>(layout.tet_count));
+  std::vector<int> body(static_cast<std::size_t>(layout.tet_count));
+  const auto& mine = disc.part().my_tets;
+  for (int c = 0; c < 5; ++c) {
+    Vector v(disc.element_map());
+    {
+      auto h = v.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (std::size_t k = 0; k < mine.size(); ++k)
+        h(k, 0) = c < 4 ? model.tets[4 * std::size_t(mine[k]) + c] : model.body_of_tet[mine[k]];
+    }
+    const auto rows = (*w.tet_rows)(v);
+    for (std::size_t j = 0; j < rows.size(); ++j)
+      if (c < 4)
+        tets[4 * j + c] = std::llround(rows[j]);
+      else
+        body[j] = static_cast<int>(rows[j]);
+  }
   w.fields = std::make_unique<output::FieldWriter>(output::shared_directory(layout.comm, dir.dir()),
                                                    layout, X, tets, body);
 }
@@ -211,7 +224,9 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   sim->model = fem::build_model(P, std::move(meshes), opt.input);
   auto pairs = contact::build_pairs(P, sim->model, opt.input);
   contact::mark_massless_slaves(pairs, sim->model, opt.input);  // before the element data are built
-  sim->disc = std::make_unique<fem::Discretization>(sim->model, comm);
+  // rank 0 hands out the tets: from here on each rank holds its own and a layer of ghosts
+  auto part = fem::distribute(sim->model, comm);
+  sim->disc = std::make_unique<fem::Discretization>(sim->model, std::move(part), comm);
   const auto& disc = *sim->disc;
   sim->contact = std::make_unique<contact::Contact>(disc, std::move(pairs));
   if (opt.restart.empty()) sim->contact->check_initial_penetration(opt.input);
@@ -269,7 +284,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   const bool root = comm->getRank() == 0;
   Progress progress(root && out.progress, stepper.end());
 
-  sum.tets = model.num_tets();
+  sum.tets = model.global_tets;
   sum.nodes = model.num_nodes();
   comm->barrier();
   sum.setup_seconds = clock.totalElapsedTime(true);

@@ -69,33 +69,10 @@ double length(const std::array<double, 3>& v) {
   return std::hypot(v[0], v[1], v[2]);
 }
 
-/// The median longest edge of body b's tets and its largest distance from its centroid.
-std::pair<double, double> body_sizes(const fem::Body& b) {
-  const auto& m = b.mesh;
-  std::vector<double> edges(m.num_tets());
-  for (int e = 0; e < m.num_tets(); ++e) {
-    const int* t = &m.tets[4 * static_cast<std::size_t>(e)];
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j)
-        edges[e] = std::max(edges[e], std::hypot(m.X[3 * t[i]] - m.X[3 * t[j]],
-                                                 m.X[3 * t[i] + 1] - m.X[3 * t[j] + 1],
-                                                 m.X[3 * t[i] + 2] - m.X[3 * t[j] + 2]));
-  }
-  if (edges.empty()) return {0.0, 0.0};
-  std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
-  std::array<double, 3> c{};
-  for (int n = 0; n < m.num_nodes(); ++n)
-    for (int k = 0; k < 3; ++k) c[k] += m.X[3 * n + k] / m.num_nodes();
-  double r = 0.0;
-  for (int n = 0; n < m.num_nodes(); ++n)
-    r = std::max(r, std::hypot(m.X[3 * n] - c[0], m.X[3 * n + 1] - c[1], m.X[3 * n + 2] - c[2]));
-  return {edges[edges.size() / 2], r};
-}
-
 /// The hints of one deformable body (see note_parameter_scales).
 void body_hints(const fem::Body& b, const fem::Model& model, double dt, double dt_min, double end,
                 std::vector<std::string>& hints) {
-  const auto [h, radius] = body_sizes(b);
+  const double h = b.median_edge, radius = b.radius;
   if (!(h > 0)) return;
   const std::string at = "Bodies/" + input::echo(b.name) + "/";
   const auto add = [&](const std::string& hint) { hints.push_back(hint); };

@@ -250,8 +250,7 @@ void Contact::check_initial_penetration(const std::string& file) const {
                   count == 1 ? "s" : "", -deepest, -deepest / pr.edge);
     throw InputError(buf);
   }
-  for (std::size_t p = 0; p < pairs_.size(); ++p)
-    check_overlap(pairs_[p], nodes_.my_slaves(p), x, file);
+  for (std::size_t p = 0; p < pairs_.size(); ++p) check_overlap(pairs_[p], x, file);
   for (const Pair& pr : pairs_)
     if (pr.rigid_master) check_facing(pr, x, file);
 }
@@ -259,32 +258,33 @@ void Contact::check_initial_penetration(const std::string& file) const {
 // docs/THEORY.md §6.6: a slave node inside the master body at any depth (a body embedded in
 // another lies deeper than any facet's window), or a node of the master surface inside the
 // slave body (the master embedded in the slave: no slave node is inside it).
-void Contact::check_overlap(const Pair& pr, const std::vector<int>& my_slaves,
-                            const std::vector<double>& x, const std::string& file) const {
-  const auto report = [&](const Overlap& mine, const char* nodes, const char* body) {
-    const int count = global_count(mine.count);
-    if (count == 0) return;
-    double deepest = 0;
-    Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MAX, 1, &mine.deepest, &deepest);
+void Contact::check_overlap(const Pair& pr, const std::vector<double>& x,
+                            const std::string& file) const {
+  // every rank tests every point against the tets it owns; a point's depth is the largest
+  const auto report = [&](const std::vector<int>& points, int body, const char* nodes,
+                          const char* name) {
+    auto depth = depth_inside_body(disc_.model(), body, points, x, pr.edge);
+    if (disc_.comm()->getSize() > 1 && !depth.empty()) {
+      std::vector<double> mine = depth;
+      Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MAX, static_cast<int>(depth.size()),
+                         mine.data(), depth.data());
+    }
+    const Overlap o = overlap_of(points, depth);
+    if (o.count == 0) return;
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "%s: Contact/%s: %d %s node%s lie%s inside the %s body at t = 0 (deepest "
                   "%.3g, %.3g of the facet size); the bodies must not overlap at the start",
-                  file.c_str(), pr.name.c_str(), count, nodes, count == 1 ? "" : "s",
-                  count == 1 ? "s" : "", body, deepest, deepest / pr.edge);
+                  file.c_str(), pr.name.c_str(), o.count, nodes, o.count == 1 ? "" : "s",
+                  o.count == 1 ? "s" : "", name, o.deepest, o.deepest / pr.edge);
     throw InputError(buf);
   };
-  const fem::Model& m = disc_.model();
-  report(inside_body(m, pr.master_body, my_slaves, x, pr.edge), "slave", "master");
-  // the master surface's nodes, shared among the ranks
-  std::vector<int> master;
+  report(pr.slaves, pr.master_body, "slave", "master");
+  std::vector<int> master;  // the master surface's nodes
   for (const auto& f : pr.facets) master.insert(master.end(), f.begin(), f.end());
   std::sort(master.begin(), master.end());
   master.erase(std::unique(master.begin(), master.end()), master.end());
-  const int rank = disc_.comm()->getRank(), ranks = disc_.comm()->getSize();
-  std::vector<int> share;
-  for (std::size_t k = rank; k < master.size(); k += ranks) share.push_back(master[k]);
-  report(inside_body(m, pr.slave_body, share, x, pr.edge), "master", "slave");
+  report(master, pr.slave_body, "master", "slave");
 }
 
 // docs/THEORY.md §6.6: a rigid surface whose facets turn their back to the slave body (its

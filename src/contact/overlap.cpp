@@ -162,14 +162,18 @@ double distance_to(const std::vector<double>& x, const std::array<int, 3>& f, co
 
 }  // namespace
 
-Overlap inside_body(const fem::Model& m, int b, const std::vector<int>& points,
-                    const std::vector<double>& x, double edge) {
-  Overlap out;
+std::vector<double> depth_inside_body(const fem::Model& m, int b, const std::vector<int>& points,
+                                      const std::vector<double>& x, double edge) {
+  std::vector<double> out(points.size(), 0.0);
   const fem::Body& body = m.bodies[b];
   if (body.rigid || points.empty()) return out;
+  std::vector<int> mine;  // the body's tets this rank owns
   std::vector<std::array<double, 6>> tet_boxes;
-  for (int e = body.tet_begin; e < body.tet_end; ++e)
-    tet_boxes.push_back(box_of(x, &m.tets[4 * std::size_t(e)], 4));
+  for (int e = 0; e < m.owned_tets; ++e)
+    if (m.body_of_tet[e] == b) {
+      mine.push_back(e);
+      tet_boxes.push_back(box_of(x, &m.tets[4 * std::size_t(e)], 4));
+    }
   std::vector<std::array<int, 3>> surface;
   std::vector<std::array<double, 6>> tri_boxes;
   for (const auto& t : mesh::boundary_triangles(body.mesh)) {
@@ -177,12 +181,11 @@ Overlap inside_body(const fem::Model& m, int b, const std::vector<int>& points,
     tri_boxes.push_back(box_of(x, surface.back().data(), 3));
   }
   const BoxBins tets(tet_boxes), tris(tri_boxes);
-  for (int n : points) {
-    const double* y = at(x, n);
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const double* y = at(x, points[p]);
     bool inside = false;
-    tets.near(y, [&](int k) {
-      inside = inside || in_tet(x, &m.tets[4 * std::size_t(body.tet_begin + k)], y);
-    });
+    tets.near(y,
+              [&](int k) { inside = inside || in_tet(x, &m.tets[4 * std::size_t(mine[k])], y); });
     if (!inside) continue;
     // its depth: the distance to the body's boundary, by rings of cells around it
     double depth = 1e300;
@@ -191,10 +194,19 @@ Overlap inside_body(const fem::Model& m, int b, const std::vector<int>& points,
          ++r)
       if (depth <= r * tris.h()) break;
     if (!(depth > std::max(1e-9 * edge, gap_roundoff(edge, y)))) continue;  // on its boundary
+    out[p] = depth;
+  }
+  return out;
+}
+
+Overlap overlap_of(const std::vector<int>& points, const std::vector<double>& depth) {
+  Overlap out;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (!(depth[p] > 0)) continue;
     ++out.count;
-    if (depth > out.deepest) {
-      out.deepest = depth;
-      out.node = n;
+    if (depth[p] > out.deepest) {
+      out.deepest = depth[p];
+      out.node = points[p];
     }
   }
   return out;

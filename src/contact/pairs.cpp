@@ -196,7 +196,9 @@ void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model,
     model.massless.resize(model.num_nodes(), 0);
     for (int s : p.slaves) model.massless[s] = 1;
   }
-  const int bad = fem::fit_massless_nodes(model);  // docs/THEORY.md §6.8
+  // docs/THEORY.md §6.8: the fit needs every tet: rank 0's (fem::distribute hands it out)
+  if (!model.holds_all_tets()) return;
+  const int bad = fem::fit_massless_nodes(model);
   if (bad < 0) return;
   for (const auto& p : pairs)
     if (p.massless_slave && std::binary_search(p.slaves.begin(), p.slaves.end(), bad)) {

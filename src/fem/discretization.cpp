@@ -13,8 +13,10 @@ using Teuchos::RCP;
 using Teuchos::rcp;
 
 Discretization::Discretization(const Model& model, RCP<const Comm> comm)
-    : model_(model), comm_(comm) {
-  part_ = partition(model_, comm_);
+    : Discretization(model, partition(model, comm), comm) {}
+
+Discretization::Discretization(const Model& model, Partition part, RCP<const Comm> comm)
+    : model_(model), comm_(comm), part_(std::move(part)) {
   build_maps();
   build_element_data();
   build_moved_mass();
@@ -35,7 +37,9 @@ void Discretization::build_maps() {
     for (int c = 0; c < 3; ++c) overlap.push_back(dof_gid(n, c));
   owned_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(owned), 0, comm_));
   overlap_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(overlap), 0, comm_));
-  std::vector<GO> tets(part_.my_tets.begin(), part_.my_tets.end());
+  std::vector<GO> tets;
+  tets.reserve(part_.my_tets.size());
+  for (int e : part_.my_tets) tets.push_back(model_.tet_id(e));
   elements_ = rcp(new Map(invalid, Teuchos::ArrayView<const GO>(tets), 0, comm_));
   importer_ = rcp(new Import(owned_, overlap_));
   exporter_ = rcp(new Export(overlap_, owned_));
@@ -79,7 +83,7 @@ void Discretization::build_element_data() {
     }
     Ve(k) = kernels::tet_gradients(x, g);
     if (!(Ve(k) > 0))
-      throw InputError("mesh: element " + std::to_string(e + 1) + " has volume " +
+      throw InputError("mesh: element " + std::to_string(model_.tet_id(e) + 1) + " has volume " +
                        std::to_string(Ve(k)) + "; every tetrahedron must have positive volume");
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) G(k, a, i) = g[a][i];

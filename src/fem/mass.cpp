@@ -8,6 +8,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <vector>
 
 #include "emcontact/error.hpp"
@@ -252,7 +253,7 @@ std::vector<double> mass_row_sums(const Model& m) {
   std::vector<double> rows(m.num_nodes(), 0.0);
   std::vector<int> nodes;
   std::vector<double> M;
-  for (int e = 0; e < m.num_tets(); ++e) {
+  for (int e = 0; e < m.owned_tets; ++e) {
     if (massless_mask(m, e)) {
       moved_element_mass(m, e, nodes, M);
       const std::size_t K = nodes.size();
@@ -277,7 +278,11 @@ void Discretization::build_moved_mass() {
   std::map<int, std::map<int, double>> rows;  // node rows -> node columns -> M'
   std::vector<int> nodes;
   std::vector<double> M;
-  for (int e = 0; e < model_.num_tets(); ++e) {
+  std::vector<int> order(model_.num_tets());  // the held tets by id (own and ghosts interleave)
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return model_.tet_id(a) < model_.tet_id(b); });
+  for (int e : order) {
     if (!massless_mask(model_, e)) continue;
     moved_element_mass(model_, e, nodes, M);
     const std::size_t K = nodes.size();

@@ -2,6 +2,8 @@
 
 #include <Teuchos_Array.hpp>
 #include <Teuchos_StandardParameterEntryValidators.hpp>
+#include <algorithm>
+#include <cmath>
 
 #include "emcontact/error.hpp"
 #include "kernels/tet4.hpp"
@@ -62,6 +64,7 @@ void apply_dirichlet(const Teuchos::ParameterList& params, Model& m, const std::
 Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMesh> meshes,
                   const std::string& file) {
   Model m;
+  bool held = true;
   const auto& bl = params.sublist("Bodies");
   std::size_t k = 0;
   for (auto it = bl.begin(); it != bl.end(); ++it) {
@@ -70,8 +73,8 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
     if (k >= meshes.size()) throw Error("internal: fewer meshes than bodies");
     Body b = make_body(name, bl.sublist(name), std::move(meshes[k++]), file + ": Bodies/" + name);
     b.node_begin = b.node_end = m.num_nodes();
-    b.tet_begin = b.tet_end = m.num_tets();
-    if (b.mesh.tets.empty()) {  // a rigid surface body
+    b.tet_begin = b.tet_end = static_cast<int>(m.global_tets);
+    if (mesh::is_rigid(b.mesh)) {  // a rigid surface body
       for (double v : {b.velocity[0], b.velocity[1], b.velocity[2], b.angular_velocity[0],
                        b.angular_velocity[1], b.angular_velocity[2]})
         if (v != 0)
@@ -84,12 +87,24 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
       m.bodies.push_back(std::move(b));
       continue;
     }
+    held = held && b.mesh.dropped_tets < 0;
     m.X.insert(m.X.end(), b.mesh.X.begin(), b.mesh.X.end());
     for (int t : b.mesh.tets) m.tets.push_back(b.node_begin + t);
     b.node_end = m.num_nodes();
-    b.tet_end = m.num_tets();
+    m.global_tets += b.mesh.body_tets();
+    b.tet_end = static_cast<int>(m.global_tets);
     m.body_of_tet.resize(m.num_tets(), static_cast<int>(m.bodies.size()));
+    mesh::drop_tets(b.mesh);  // the model holds them now
+    std::vector<double>().swap(b.mesh.X);
     m.bodies.push_back(std::move(b));
+  }
+  if (held) {  // every tet is here: the bodies' geometry and the mesh's identity
+    m.owned_tets = m.num_tets();
+    for (std::size_t b = 0; b < m.bodies.size(); ++b)
+      if (!m.bodies[b].rigid) body_geometry(m, static_cast<int>(b));
+    m.mesh_fnv = fnv_basis;
+    fnv_into(m.mesh_fnv, m.X);
+    fnv_into(m.mesh_fnv, m.tets);
   }
   m.fixed.assign(m.num_nodes(), 0);
   apply_dirichlet(params, m, file);
@@ -114,19 +129,41 @@ int massless_mask(const Model& m, int e) {
 }
 
 // docs/THEORY.md §6.8: the moved mass has the same first moment (its T reproduces affine fields)
-std::array<double, 3> centre_of_mass(const Model& m, int b) {
+void body_geometry(Model& m, int b) {
+  Body& body = m.bodies[b];
   double vol = 0;
   std::array<double, 3> c{};
-  for (int e = m.bodies[b].tet_begin; e < m.bodies[b].tet_end; ++e) {
+  std::vector<double> edges;
+  edges.reserve(body.tet_end - body.tet_begin);
+  for (int e = body.tet_begin; e < body.tet_end; ++e) {
     double x[4][3];
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
     const double v = kernels::tet_volume(x);
     vol += v;
     for (int i = 0; i < 3; ++i) c[i] += v * 0.25 * (x[0][i] + x[1][i] + x[2][i] + x[3][i]);
+    double edge = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j)
+        edge = std::max(edge, std::hypot(x[i][0] - x[j][0], x[i][1] - x[j][1], x[i][2] - x[j][2]));
+    edges.push_back(edge);
   }
   for (int i = 0; i < 3; ++i) c[i] /= vol;
-  return c;
+  body.centre = c;
+  body.median_edge = 0;
+  if (!edges.empty()) {
+    std::nth_element(edges.begin(), edges.begin() + edges.size() / 2, edges.end());
+    body.median_edge = edges[edges.size() / 2];
+  }
+  // the largest distance of a node from the nodes' centroid
+  const int nn = body.node_end - body.node_begin;
+  std::array<double, 3> g{};
+  for (int n = body.node_begin; n < body.node_end; ++n)
+    for (int k = 0; k < 3; ++k) g[k] += m.X[3 * n + k] / nn;
+  body.radius = 0;
+  for (int n = body.node_begin; n < body.node_end; ++n)
+    body.radius = std::max(
+        body.radius, std::hypot(m.X[3 * n] - g[0], m.X[3 * n + 1] - g[1], m.X[3 * n + 2] - g[2]));
 }
 
 std::vector<double> initial_velocity(const Model& m) {

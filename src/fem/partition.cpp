@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <numeric>
 
+#include "emcontact/error.hpp"
 #include "emcontact/parallel.hpp"
 
 namespace emc::fem {
@@ -55,7 +56,8 @@ void sort_along_curve(std::vector<int>& tets, const std::vector<std::uint64_t>& 
   std::stable_sort(tets.begin(), tets.end(), [&](int a, int b) { return key[a] < key[b]; });
 }
 
-/// Zoltan2's part of each tet of [begin, end), this rank's share of the input (collective).
+/// Zoltan2's part of each tet of [first, first + n), this rank's share of the input, from their
+/// centroids (3 per tet; collective).
 /// Multi-jagged rather than RCB (Zoltan's, `algorithm = rcb`): on the 506k-tet ball both give
 /// parts within one tet of the mean, and on 2 ranks the same cut; on 4 ranks multi-jagged's
 /// parts share 5241 interface nodes, RCB's 5326 (the Morton split: 5526). Unit weights: weighting
@@ -65,17 +67,17 @@ void sort_along_curve(std::vector<int>& tets, const std::vector<std::uint64_t>& 
 /// the cuts are found from global reductions alone, whose sums are of unit weights (integers,
 /// exact in any order) and min/max of coordinates. So the same input and rank count give the
 /// same parts, also with Kokkos threads.
-std::vector<int> zoltan2_parts(const Model& m, int begin, int end,
+std::vector<int> zoltan2_parts(long long first, const std::vector<double>& centroids,
                                const Teuchos::RCP<const Comm>& comm) {
   using Adapter = Zoltan2::BasicVectorAdapter<Zoltan2::BasicUserTypes<double, int, long long>>;
-  const int n = end - begin;
+  const int n = static_cast<int>(centroids.size() / 3);
   std::vector<long long> gid(n);
   std::vector<double> x(n), y(n), z(n);
   for (int k = 0; k < n; ++k) {
-    gid[k] = begin + k;
-    x[k] = centroid(m, begin + k, 0);
-    y[k] = centroid(m, begin + k, 1);
-    z[k] = centroid(m, begin + k, 2);
+    gid[k] = first + k;
+    x[k] = centroids[3 * k];
+    y[k] = centroids[3 * k + 1];
+    z[k] = centroids[3 * k + 2];
   }
   Adapter adapter(n, gid.data(), x.data(), y.data(), z.data());
   Teuchos::ParameterList params("emcontact partition");
@@ -87,6 +89,20 @@ std::vector<int> zoltan2_parts(const Model& m, int begin, int end,
   problem.solve();
   const int* part = problem.getSolution().getPartListView();
   return std::vector<int>(part, part + n);
+}
+
+/// The centroids of tets [begin, end) of m (3 each).
+std::vector<double> centroids(const Model& m, long long begin, long long end) {
+  std::vector<double> c;
+  c.reserve(3 * (end - begin));
+  for (long long e = begin; e < end; ++e)
+    for (int i = 0; i < 3; ++i) c.push_back(centroid(m, static_cast<int>(e), i));
+  return c;
+}
+
+/// The first tet of rank r's share of ne tets among np ranks (Zoltan2's input blocks).
+long long block_begin(long long ne, int r, int np) {
+  return ne * r / np;
 }
 
 /// The partition for the part of every tet: my tets along the curve, the lowest touching
@@ -126,19 +142,201 @@ std::vector<int> morton_order(const Model& m) {
 
 // Each rank gives Zoltan2 a contiguous share of the tet ids and gets their parts back. The
 // model is replicated, so the parts are all-gathered and every rank derives its tets and the
-// owner of every node from them. With a distributed model (each rank holding its share) the
-// all-gather becomes sending each tet to its part's rank, and a node's owner the least part
-// among the tets touching it, reduced at the node's home rank; the Morton keys then need only
-// the global bounding box (an all-reduce).
+// owner of every node from them.
 Partition partition(const Model& m, const Teuchos::RCP<const Comm>& comm) {
   const int ne = m.num_tets(), rank = comm->getRank(), np = comm->getSize();
   std::vector<int> part_of_tet(ne, 0);
   if (np > 1) {
-    const int begin = static_cast<int>(static_cast<long long>(ne) * rank / np);
-    const int end = static_cast<int>(static_cast<long long>(ne) * (rank + 1) / np);
-    part_of_tet = allgather(*comm, zoltan2_parts(m, begin, end, comm));
+    const long long begin = block_begin(ne, rank, np), end = block_begin(ne, rank + 1, np);
+    part_of_tet = allgather(*comm, zoltan2_parts(begin, centroids(m, begin, end), comm));
   }
   return assemble(m, part_of_tet, morton_keys(m), rank);
+}
+
+namespace {
+
+/// Rank 0's centroids of the tets of every rank's Zoltan2 block, scattered (MPI_Scatterv).
+std::vector<double> scatter_centroids(const Model& m, long long ne, const Comm& comm) {
+  const int np = comm.getSize(), rank = comm.getRank();
+  std::vector<int> count(np), displ(np);
+  for (int r = 0; r < np; ++r) {
+    count[r] = static_cast<int>(3 * (block_begin(ne, r + 1, np) - block_begin(ne, r, np)));
+    displ[r] = static_cast<int>(3 * block_begin(ne, r, np));
+  }
+  const std::vector<double> all = rank == 0 ? centroids(m, 0, ne) : std::vector<double>();
+  std::vector<double> mine(count[rank]);
+  MPI_Scatterv(all.data(), count.data(), displ.data(), MPI_DOUBLE, mine.data(), count[rank],
+               MPI_DOUBLE, 0, raw_comm(comm));
+  return mine;
+}
+
+/// Every block's parts on rank 0, in tet order (MPI_Gatherv; empty on the other ranks).
+std::vector<int> gather_parts(const std::vector<int>& mine, long long ne, const Comm& comm) {
+  const int np = comm.getSize(), rank = comm.getRank();
+  std::vector<int> count(np), displ(np);
+  for (int r = 0; r < np; ++r) {
+    count[r] = static_cast<int>(block_begin(ne, r + 1, np) - block_begin(ne, r, np));
+    displ[r] = static_cast<int>(block_begin(ne, r, np));
+  }
+  std::vector<int> all(rank == 0 ? ne : 0);
+  MPI_Gatherv(mine.data(), static_cast<int>(mine.size()), MPI_INT, all.data(), count.data(),
+              displ.data(), MPI_INT, 0, raw_comm(comm));
+  return all;
+}
+
+/// The held tets of one rank: ids ascending, its own first.
+struct TetList {
+  std::vector<int> owned, ghost;
+};
+
+/// Rank 0: each rank's own tets and ghosts (the tets of other ranks touching a node it owns,
+/// and every tet with a massless node).
+std::vector<TetList> tet_lists(const Model& m, const std::vector<int>& part,
+                               const std::vector<int>& owner, int np) {
+  std::vector<TetList> lists(np);
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const int r = part[e];
+    lists[r].owned.push_back(e);
+    if (massless_mask(m, e)) {
+      for (int o = 0; o < np; ++o)
+        if (o != r) lists[o].ghost.push_back(e);
+      continue;
+    }
+    int need[4], n = 0;
+    for (int a = 0; a < 4; ++a) {
+      const int o = owner[m.tets[4 * e + a]];
+      if (o != r && std::find(need, need + n, o) == need + n) need[n++] = o;
+    }
+    for (int k = 0; k < n; ++k) lists[need[k]].ghost.push_back(e);
+  }
+  return lists;
+}
+
+/// The held tets of a list: ids, 4 node ids and the body of each.
+struct HeldTets {
+  std::vector<long long> gid;
+  std::vector<int> tets, body;
+  int owned = 0;
+};
+
+HeldTets held_tets(const Model& m, const TetList& list) {
+  HeldTets h;
+  h.owned = static_cast<int>(list.owned.size());
+  for (const auto* ids : {&list.owned, &list.ghost})
+    for (int e : *ids) {
+      h.gid.push_back(e);
+      h.tets.insert(h.tets.end(), m.tets.begin() + 4 * std::size_t(e),
+                    m.tets.begin() + 4 * std::size_t(e + 1));
+      h.body.push_back(m.body_of_tet[e]);
+    }
+  return h;
+}
+
+constexpr int kTagHeld = 4501;
+
+/// Rank 0 sends each other rank its held tets, one rank at a time (so that only one rank's
+/// part is ever copied out), and returns its own.
+HeldTets send_held_tets(const Model& m, const std::vector<TetList>& lists, const Comm& comm) {
+  const MPI_Comm c = raw_comm(comm);
+  for (int r = 1; r < comm.getSize(); ++r) {
+    const HeldTets h = held_tets(m, lists[r]);
+    long long head[2] = {static_cast<long long>(h.gid.size()), h.owned};
+    MPI_Send(head, 2, MPI_LONG_LONG, r, kTagHeld, c);
+    MPI_Send(h.gid.data(), static_cast<int>(h.gid.size()), MPI_LONG_LONG, r, kTagHeld, c);
+    MPI_Send(h.tets.data(), static_cast<int>(h.tets.size()), MPI_INT, r, kTagHeld, c);
+    MPI_Send(h.body.data(), static_cast<int>(h.body.size()), MPI_INT, r, kTagHeld, c);
+  }
+  return held_tets(m, lists[0]);
+}
+
+HeldTets receive_held_tets(const Comm& comm) {
+  const MPI_Comm c = raw_comm(comm);
+  long long head[2];
+  MPI_Recv(head, 2, MPI_LONG_LONG, 0, kTagHeld, c, MPI_STATUS_IGNORE);
+  HeldTets h;
+  h.owned = static_cast<int>(head[1]);
+  h.gid.resize(head[0]);
+  h.tets.resize(4 * head[0]);
+  h.body.resize(head[0]);
+  MPI_Recv(h.gid.data(), static_cast<int>(h.gid.size()), MPI_LONG_LONG, 0, kTagHeld, c,
+           MPI_STATUS_IGNORE);
+  MPI_Recv(h.tets.data(), static_cast<int>(h.tets.size()), MPI_INT, 0, kTagHeld, c,
+           MPI_STATUS_IGNORE);
+  MPI_Recv(h.body.data(), static_cast<int>(h.body.size()), MPI_INT, 0, kTagHeld, c,
+           MPI_STATUS_IGNORE);
+  return h;
+}
+
+/// Rank 0's bodies' geometry, mesh identity and massless fit on every rank.
+void broadcast_rank0_results(Model& m, const Comm& comm) {
+  std::vector<double> g;
+  for (const Body& b : m.bodies)
+    g.insert(g.end(), {b.centre[0], b.centre[1], b.centre[2], b.median_edge, b.radius});
+  broadcast_vector(comm, g);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    for (int i = 0; i < 3; ++i) m.bodies[b].centre[i] = g[5 * b + i];
+    m.bodies[b].median_edge = g[5 * b + 3];
+    m.bodies[b].radius = g[5 * b + 4];
+  }
+  unsigned long long fnv = m.mesh_fnv;
+  Teuchos::broadcast(comm, 0, 1, &fnv);
+  m.mesh_fnv = fnv;
+  if (m.massless.empty()) return;
+  broadcast_vector(comm, m.massless_fit.node);
+  broadcast_vector(comm, m.massless_fit.start);
+  broadcast_vector(comm, m.massless_fit.support);
+  broadcast_vector(comm, m.massless_fit.weight);
+}
+
+/// This rank's part of a distributed model: its own tets along the curve, the owners.
+Partition part_of_held(const Model& m, std::vector<int> node_owner, int rank) {
+  Partition p;
+  p.node_owner = std::move(node_owner);
+  p.my_tets.resize(m.owned_tets);
+  std::iota(p.my_tets.begin(), p.my_tets.end(), 0);
+  sort_along_curve(p.my_tets, morton_keys(m));
+  std::vector<int> used(m.tets.begin(), m.tets.begin() + 4 * std::size_t(m.owned_tets));
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  for (int n : used) (p.node_owner[n] == rank ? p.owned_nodes : p.shared_nodes).push_back(n);
+  return p;
+}
+
+}  // namespace
+
+Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm) {
+  const int rank = comm->getRank(), np = comm->getSize();
+  const long long ne = m.global_tets;
+  if (rank == 0 && !m.holds_all_tets())
+    throw Error("internal: fem::distribute needs every tet on rank 0");
+  if (np == 1) {
+    m.owned_tets = m.num_tets();
+    return partition(m, comm);
+  }
+  broadcast_rank0_results(m, *comm);
+  const long long first = block_begin(ne, rank, np);
+  const std::vector<int> part =
+      gather_parts(zoltan2_parts(first, scatter_centroids(m, ne, *comm), comm), ne, *comm);
+  std::vector<int> owner;
+  std::vector<TetList> lists;
+  if (rank == 0) {
+    owner.assign(m.num_nodes(), INT_MAX);
+    for (long long e = 0; e < ne; ++e)
+      for (int a = 0; a < 4; ++a) {
+        int& o = owner[m.tets[4 * e + a]];
+        o = std::min(o, part[e]);
+      }
+    for (int& o : owner)
+      if (o == INT_MAX) o = -1;
+    lists = tet_lists(m, part, owner, np);
+  }
+  broadcast_vector(*comm, owner);
+  HeldTets h = rank == 0 ? send_held_tets(m, lists, *comm) : receive_held_tets(*comm);
+  m.tets = std::move(h.tets);
+  m.body_of_tet = std::move(h.body);
+  m.tet_gid = std::move(h.gid);
+  m.owned_tets = h.owned;
+  return part_of_held(m, std::move(owner), rank);
 }
 
 }  // namespace emc::fem

@@ -242,6 +242,7 @@ void check_distinct_tets(const BodyMesh& m, const std::string& where,
 }
 
 std::vector<std::array<int, 3>> boundary_triangles(const BodyMesh& m) {
+  if (m.dropped_tets >= 0 || !m.boundary.empty()) return m.boundary;  // kept by drop_tets
   const std::vector<Face> faces = sorted_faces(m);
   std::vector<Tri> out;
   for (std::size_t i = 0; i < faces.size();) {
@@ -252,6 +253,13 @@ std::vector<std::array<int, 3>> boundary_triangles(const BodyMesh& m) {
   }
   detail::sort_triangles(out);
   return out;
+}
+
+void drop_tets(BodyMesh& m) {
+  if (m.dropped_tets >= 0 || m.tets.empty()) return;
+  if (m.boundary.empty()) m.boundary = boundary_triangles(m);
+  m.dropped_tets = m.num_tets();
+  std::vector<int>().swap(m.tets);
 }
 
 std::vector<int> surface_nodes(const BodyMesh& m, const std::string& name,

@@ -1,5 +1,6 @@
 #pragma once
 // Linear momentum of each body of a simulation (tests only).
+#include <Teuchos_CommHelpers.hpp>
 #include <array>
 #include <vector>
 
@@ -13,7 +14,10 @@ namespace emc::testing {
 inline std::vector<std::array<double, 3>> body_momenta(emc::app::Simulation& sim) {
   const auto& m = sim.model;
   const auto V = replicate(*sim.disc, *sim.state.V);
-  const std::vector<double> lumped = emc::fem::mass_row_sums(m);
+  const std::vector<double> mine = emc::fem::mass_row_sums(m);  // of this rank's own tets
+  std::vector<double> lumped(mine.size());
+  Teuchos::reduceAll(*sim.disc->comm(), Teuchos::REDUCE_SUM, static_cast<int>(mine.size()),
+                     mine.data(), lumped.data());
   std::vector<std::array<double, 3>> p(m.bodies.size(), {0, 0, 0});
   for (std::size_t b = 0; b < m.bodies.size(); ++b)
     for (int n = m.bodies[b].node_begin; n < m.bodies[b].node_end; ++n)

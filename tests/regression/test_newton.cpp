@@ -40,9 +40,9 @@ emc::fem::Model large_step_model(const Teuchos::RCP<const emc::Comm>& comm,
 TEST(Newton, QuadraticOnLargeDeformationStep) {
   auto comm = Tpetra::getDefaultComm();
   Teuchos::RCP<Teuchos::ParameterList> params;
-  const auto model = large_step_model(comm, &params);
+  auto model = large_step_model(comm, &params);
   const auto& in = *params;
-  const emc::fem::Discretization disc(model, comm);
+  const emc::fem::Discretization disc(model, emc::fem::distribute(model, comm), comm);
   emc::linalg::Elimination elim(disc.owned_map());
   auto linear = in.sublist("Solver").sublist("Linear");
   linear.set("type", comm->getSize() == 1 ? "klu2" : "gmres");
@@ -82,7 +82,7 @@ class NewtonPasses : public ::testing::Test {
   Teuchos::RCP<const emc::Comm> comm = Tpetra::getDefaultComm();
   Teuchos::RCP<Teuchos::ParameterList> params;
   emc::fem::Model model = large_step_model(comm, &params);
-  emc::fem::Discretization disc{model, comm};
+  emc::fem::Discretization disc{model, emc::fem::distribute(model, comm), comm};
   std::vector<emc::time::NewtonResult> runs;
   std::vector<emc::Vector> solutions;
 

@@ -41,6 +41,8 @@ inline emc::fem::Model box_model(int n) {
   b.density = 1000;
   m.bodies.push_back(b);
   m.fixed.assign(m.num_nodes(), 0);
+  m.global_tets = m.owned_tets = m.num_tets();
+  emc::fem::body_geometry(m, 0);
   return m;
 }
 

@@ -137,8 +137,7 @@ class Contact {
   mutable ContactNodes nodes_;
   std::vector<char> master_node_;  ///< per model node: a node of some pair's master facets
   void check_facing(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
-  void check_overlap(const Pair& pr, const std::vector<int>& my_slaves,
-                     const std::vector<double>& x, const std::string& file) const;
+  void check_overlap(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
   std::vector<Active> detect_pair(int p, Positions x0, Positions x1,
                                   Kokkos::View<int*, ExecSpace> busy) const;
 };

@@ -13,11 +13,15 @@ struct Overlap {
   int node = -1;       ///< that point
 };
 
-/// The points (geometry node ids into x, 3 coordinates each) that lie inside deformable body b
-/// of m: in one of its tets and farther from its boundary triangles than the round-off
-/// max(1e-9 edge, gap_roundoff) (a point on the boundary, as on flush faces, is not inside).
-/// A rigid body has no inside.
-Overlap inside_body(const fem::Model& m, int b, const std::vector<int>& points,
-                    const std::vector<double>& x, double edge);
+/// For each of the points (geometry node ids into x, 3 coordinates each): its depth inside
+/// deformable body b of m, its distance to the body's boundary triangles, when it lies in one of
+/// the body's tets this rank owns (fem::distribute) and farther from the boundary than the
+/// round-off max(1e-9 edge, gap_roundoff) (a point on the boundary, as on flush faces, is not
+/// inside); else 0. A rigid body has no inside. A point's depth is the largest over the ranks.
+std::vector<double> depth_inside_body(const fem::Model& m, int b, const std::vector<int>& points,
+                                      const std::vector<double>& x, double edge);
+
+/// The points with a depth > 0, the deepest of them.
+Overlap overlap_of(const std::vector<int>& points, const std::vector<double>& depth);
 
 }  // namespace emc::contact

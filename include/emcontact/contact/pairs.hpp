@@ -42,8 +42,9 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
 
 /// docs/THEORY.md §6.8: marks the slave nodes of the pairs with `massless slave` in
 /// model.massless (left empty when no pair asks for it) and fits each one's velocity over the
-/// massive nodes around it (fem::fit_massless_nodes); throws InputError naming `file` and the
-/// pair when a body's massive nodes cannot carry its slave nodes' mass.
+/// massive nodes around it (fem::fit_massless_nodes, where the model holds every tet: rank 0;
+/// fem::distribute gives the others the fit); throws InputError naming `file` and the pair when
+/// a body's massive nodes cannot carry its slave nodes' mass.
 void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model,
                           const std::string& file);
 

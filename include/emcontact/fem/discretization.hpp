@@ -51,7 +51,10 @@ struct AssemblyInfo {
 
 class Discretization {
  public:
+  /// On a model every rank holds whole (tests): partition() of it.
   Discretization(const Model& model, Teuchos::RCP<const Comm> comm);
+  /// On a distributed model and its part (fem::distribute).
+  Discretization(const Model& model, Partition part, Teuchos::RCP<const Comm> comm);
 
   const Model& model() const { return model_; }
   const Partition& part() const { return part_; }

@@ -1,8 +1,12 @@
 #pragma once
-// The global (replicated) description of the problem: all bodies' meshes concatenated,
-// materials, initial velocities, loads and fixed nodes. Built identically on every rank.
+// The description of the problem: all bodies' meshes concatenated, materials, initial
+// velocities, loads and fixed nodes. The per-node data (coordinates, fixed and massless flags)
+// and the bodies' surfaces are on every rank; the tetrahedra are on rank 0 until
+// fem::distribute hands every rank its part and a layer of ghosts (docs/developer-guide.md,
+// "Distributed model").
 #include <Teuchos_ParameterList.hpp>
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +27,12 @@ struct Body {
   /// from rigid_begin on, fixed in space (docs/THEORY.md §1.3, §2.1).
   bool rigid = false;
   int rigid_begin = 0;
+  /// Reference geometry over all the body's tets (body_geometry; on every rank once
+  /// fem::distribute has run): the centre of mass (the consistent mass's, which the moved mass
+  /// of docs/THEORY.md §6.8 keeps), the median longest tet edge and the largest distance of a
+  /// node from the nodes' centroid.
+  std::array<double, 3> centre{};
+  double median_edge = 0, radius = 0;
 };
 
 /// docs/THEORY.md §6.8: the velocity of each massless node as an affine combination of massive
@@ -39,8 +49,17 @@ struct MasslessFit {
 
 struct Model {
   std::vector<double> X;         ///< reference coordinates, 3 per global node
-  std::vector<int> tets;         ///< 4 global node ids per tet
-  std::vector<int> body_of_tet;  ///< body index per tet
+  std::vector<int> tets;         ///< 4 global node ids per held tet
+  std::vector<int> body_of_tet;  ///< body index per held tet
+  /// The global id of each held tet. Empty while the model holds every tet, tet e being id e
+  /// (rank 0 before fem::distribute, or a model built on every rank). After fem::distribute:
+  /// this rank's own tets (the first owned_tets), then its ghosts (the other ranks' tets that
+  /// touch a node it owns, and every tet with a massless node), each in ascending id.
+  std::vector<long long> tet_gid;
+  int owned_tets = 0;         ///< held tets this rank owns (all held tets before distribute)
+  long long global_tets = 0;  ///< the tets of all bodies
+  /// FNV-1a of X's then the global tets' bytes (the model's identity for checkpoints)
+  std::uint64_t mesh_fnv = 0;
   std::vector<Body> bodies;
   std::vector<char> fixed;  ///< per global node: displacement prescribed to zero
   /// per global node (or empty): its mass is moved onto massive nodes of its body
@@ -53,11 +72,25 @@ struct Model {
   Scatter scatter = resolve_scatter(ScatterChoice::automatic);  ///< Solver/Assembly/scatter
 
   int num_nodes() const { return static_cast<int>(X.size() / 3); }
-  int num_tets() const { return static_cast<int>(tets.size() / 4); }
+  int num_tets() const { return static_cast<int>(tets.size() / 4); }  ///< held tets
+  /// The global id of held tet e.
+  long long tet_id(int e) const { return tet_gid.empty() ? e : tet_gid[e]; }
+  /// True when every tet is held here, at its global id.
+  bool holds_all_tets() const { return tet_gid.empty() && num_tets() == global_tets; }
 };
 
+/// FNV-1a's offset basis and the bytes of v folded into h.
+inline constexpr std::uint64_t fnv_basis = 14695981039346656037ull;
+template <class T>
+void fnv_into(std::uint64_t& h, const std::vector<T>& v) {
+  const auto* p = reinterpret_cast<const unsigned char*>(v.data());
+  for (std::size_t i = 0; i < v.size() * sizeof(T); ++i) h = (h ^ p[i]) * 1099511628211ull;
+}
+
 /// Assembles the model from the validated parameters and the bodies' meshes (in the order of
-/// the `Bodies` sublists). `file` names the input in error messages.
+/// the `Bodies` sublists). `file` names the input in error messages. Meshes whose tets were
+/// dropped (mesh::drop_tets: the ranks other than 0) give a model without tets; where the tets
+/// are given the bodies' geometry and mesh_fnv are computed. The meshes' tets are dropped.
 Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMesh> meshes,
                   const std::string& file);
 
@@ -65,9 +98,12 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
 /// mass (docs/THEORY.md §1.3 consistent mass: the volume-weighted centroid of its tets).
 std::vector<double> initial_velocity(const Model& m);
 
-/// Centre of mass of body b in the reference configuration (the consistent mass's, which the
-/// moved mass of docs/THEORY.md §6.8 keeps).
-std::array<double, 3> centre_of_mass(const Model& m, int b);
+/// Centre of mass of body b in the reference configuration (Body::centre).
+inline std::array<double, 3> centre_of_mass(const Model& m, int b) {
+  return m.bodies[b].centre;
+}
+/// Body b's Body::centre, median_edge and radius from its tets (a model holding all tets).
+void body_geometry(Model& m, int b);
 /// docs/THEORY.md §6.8: bit a set when node a of tet e is massless (0 without massless nodes).
 int massless_mask(const Model& m, int e);
 
@@ -80,7 +116,8 @@ int fit_massless_nodes(Model& m);
 void moved_element_mass(const Model& m, int e, std::vector<int>& nodes, std::vector<double>& M);
 
 /// The row sums of the mass matrix per global node, M 1 (one component; docs/THEORY.md §1.3 and,
-/// with massless nodes, §6.8): sum_n (row sum)_n V_n is the linear momentum of a field V.
+/// with massless nodes, §6.8): sum_n (row sum)_n V_n is the linear momentum of a field V. From
+/// this rank's own tets: on a distributed model, the sum over the ranks is M 1.
 std::vector<double> mass_row_sums(const Model& m);
 
 }  // namespace emc::fem

@@ -14,7 +14,8 @@
 namespace emc::fem {
 
 struct Partition {
-  std::vector<int> my_tets;       ///< global tet ids of this rank, in Morton order
+  std::vector<int>
+      my_tets;  ///< this rank's tets (indices of the model's held tets), in Morton order
   std::vector<int> owned_nodes;   ///< sorted global node ids this rank owns
   std::vector<int> shared_nodes;  ///< sorted global node ids used by my tets, owned elsewhere
   std::vector<int> node_owner;    ///< owner rank of every global node (-1: used by no tet)
@@ -27,6 +28,16 @@ inline constexpr double partition_imbalance_tolerance = 1.01;
 /// This rank's part of m over comm's ranks. Collective: every rank of comm calls it with the
 /// same (replicated) model.
 Partition partition(const Model& m, const Teuchos::RCP<const Comm>& comm);
+
+/// Hands every rank its part of rank 0's tets (collective): Zoltan2 partitions their centroids,
+/// given to it in blocks of ids scattered from rank 0 (the blocks partition() gives it), then
+/// rank 0 sends each rank, one after the other, its own tets and its ghosts, and keeps only its
+/// own. Before: rank 0's m holds every tet (build_model); the other ranks' hold none (or a
+/// replicated copy, ignored). After: see Model::tet_gid; the bodies' geometry, mesh_fnv and
+/// the massless fit are rank 0's on every rank. Returns this rank's part: the same tets in the
+/// same order, owners and shared nodes as partition() of the whole model (my_tets then index
+/// the held tets). On one rank the model stays as it is.
+Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm);
 
 /// Every global tet id, ordered along the Morton curve of the tets' centroids (in the cube
 /// around all nodes, 2^21 cells a side); ties in id order.

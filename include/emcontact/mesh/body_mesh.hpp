@@ -1,6 +1,7 @@
 #pragma once
 // The mesh of one body: P1 tetrahedra, node coordinates and named surfaces. Plain arrays, no
-// Trilinos: every rank holds the whole (replicated) mesh; the fem module partitions elements.
+// Trilinos. Rank 0 builds or reads every mesh; the other ranks get the nodes and the surfaces
+// but not the tetrahedra (see drop_tets), which the fem module partitions and hands out.
 // A mesh without tetrahedra is a rigid surface (see is_rigid): its nodes and its triangles.
 #include <array>
 #include <cstddef>
@@ -19,14 +20,26 @@ struct BodyMesh {
   /// (b-a)x(c-a) points to the side contact happens on), `surface` holding all of them.
   std::map<std::string, std::vector<std::array<int, 3>>> surfaces;
 
+  /// The number of tetrahedra when they are not held here (drop_tets), else -1.
+  int dropped_tets = -1;
+  /// boundary_triangles of the tetrahedra, kept when they are dropped (empty until then).
+  std::vector<std::array<int, 3>> boundary;
+
   int num_nodes() const { return static_cast<int>(X.size() / 3); }
+  /// The tetrahedra held here (0 once dropped).
   int num_tets() const { return static_cast<int>(tets.size() / 4); }
+  /// The tetrahedra of the body, held here or not.
+  int body_tets() const { return dropped_tets >= 0 ? dropped_tets : num_tets(); }
 };
 
 /// True for a rigid surface body: a mesh without tetrahedra (nodes and triangles only).
 inline bool is_rigid(const BodyMesh& m) {
-  return m.tets.empty();
+  return m.body_tets() == 0;
 }
+
+/// Frees the tetrahedra, keeping their count and boundary triangles (the surfaces contact and
+/// boundary conditions use). Nothing to do for a rigid surface or a mesh dropped already.
+void drop_tets(BodyMesh& m);
 
 /// Signed reference volume of tet e (docs/THEORY.md §1.1: V_e > 0 for a valid element).
 double tet_volume(const BodyMesh& m, int e);

@@ -2,9 +2,11 @@
 // _np2, _np4): every tet in exactly one part, every used node owned by exactly one rank (the
 // lowest that uses it), the owned/shared lists consistent with it; the parts balanced within
 // Zoltan2's imbalance tolerance; no more interface nodes than the Morton split it replaced;
-// the same result from two calls.
+// the same result from two calls. distribute() (rank 0 handing out the tets) gives the same
+// parts as partition() of the whole model, each rank its own tets and one layer of ghosts.
 #include <gtest/gtest.h>
 
+#include <Teuchos_CommHelpers.hpp>
 #include <Tpetra_Core.hpp>
 #include <algorithm>
 #include <climits>
@@ -148,3 +150,88 @@ TEST(Partition, TheSameTwice) {
 }
 
 }  // namespace
+
+namespace {
+
+/// The box with its bottom layer's nodes massless (as for a massless slave surface), the fit
+/// taken on every rank from the whole model.
+Model box_with_massless_bottom(int n) {
+  Model m = stretched_box(n);
+  m.massless.assign(m.num_nodes(), 0);
+  for (int k = 0; k < m.num_nodes(); ++k) m.massless[k] = m.X[3 * k + 2] == 0.0;
+  EXPECT_EQ(emc::fem::fit_massless_nodes(m), -1);
+  return m;
+}
+
+/// distribute() of rank 0's copy of `whole` (the other ranks holding no tets, as after
+/// app::build_meshes) against partition() of the whole model on every rank.
+void expect_distribute_matches_partition(const Model& whole) {
+  const auto comm = Tpetra::getDefaultComm();
+  const int rank = comm->getRank(), np = comm->getSize();
+  const Partition ref = emc::fem::partition(whole, comm);
+  Model m = whole;
+  if (rank != 0) {
+    m.tets.clear();
+    m.body_of_tet.clear();
+    m.owned_tets = 0;
+    m.mesh_fnv = 0;
+    m.bodies[0].centre = {};
+    m.bodies[0].median_edge = m.bodies[0].radius = 0;
+    m.massless_fit = {};
+  }
+  const Partition p = emc::fem::distribute(m, comm);
+  // the same tets in the same order, the same owners
+  ASSERT_EQ(p.my_tets.size(), ref.my_tets.size());
+  for (std::size_t k = 0; k < p.my_tets.size(); ++k)
+    EXPECT_EQ(m.tet_id(p.my_tets[k]), ref.my_tets[k]);
+  EXPECT_EQ(p.node_owner, ref.node_owner);
+  EXPECT_EQ(p.owned_nodes, ref.owned_nodes);
+  EXPECT_EQ(p.shared_nodes, ref.shared_nodes);
+  // every held tet as in the whole model; own tets first, each group ascending
+  ASSERT_EQ(m.tets.size(), 4 * m.tet_gid.size() + (np == 1 ? m.tets.size() : 0));
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const long long g = m.tet_id(e);
+    for (int a = 0; a < 4; ++a) EXPECT_EQ(m.tets[4 * e + a], whole.tets[4 * g + a]);
+    EXPECT_EQ(m.body_of_tet[e], whole.body_of_tet[g]);
+    if (e > 0 && e != m.owned_tets) EXPECT_LT(m.tet_id(e - 1), g);
+  }
+  // the ghosts: exactly the other ranks' tets touching a node I own, and those with a massless
+  // node
+  std::vector<long long> ghosts, expected;
+  for (int e = m.owned_tets; e < m.num_tets(); ++e) ghosts.push_back(m.tet_id(e));
+  std::vector<char> mine(whole.num_tets(), 0);
+  for (int e : ref.my_tets) mine[e] = 1;
+  for (int e = 0; e < whole.num_tets() && np > 1; ++e) {
+    if (mine[e]) continue;
+    bool touches = emc::fem::massless_mask(whole, e) != 0;
+    for (int a = 0; a < 4; ++a) touches = touches || ref.node_owner[whole.tets[4 * e + a]] == rank;
+    if (touches) expected.push_back(e);
+  }
+  EXPECT_EQ(ghosts, expected);
+  if (np > 1 && rank == 0) EXPECT_FALSE(expected.empty());  // the owner of the interface
+  // rank 0's results on every rank; the own tets add up to the whole
+  EXPECT_EQ(m.mesh_fnv, whole.mesh_fnv);
+  EXPECT_EQ(m.bodies[0].centre, whole.bodies[0].centre);
+  EXPECT_EQ(m.bodies[0].median_edge, whole.bodies[0].median_edge);
+  EXPECT_EQ(m.massless_fit.support, whole.massless_fit.support);
+  EXPECT_EQ(m.massless_fit.weight, whole.massless_fit.weight);
+  int owned = m.owned_tets, total = 0;
+  Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, 1, &owned, &total);
+  EXPECT_EQ(total, whole.num_tets());
+}
+
+}  // namespace
+
+// Rank 0 hands out the tets: the same parts as the partition of the whole model, each rank
+// holding its own tets and one layer of ghosts, rank 0 no more than the others.
+TEST(Distribute, SamePartsAsThePartitionOfTheWholeModel) {
+  Model whole = stretched_box(10);
+  whole.mesh_fnv = 12345;  // as build_model's, on rank 0
+  expect_distribute_matches_partition(whole);
+}
+
+TEST(Distribute, MasslessTetsOnEveryRank) {
+  Model whole = box_with_massless_bottom(8);
+  whole.mesh_fnv = 6789;
+  expect_distribute_matches_partition(whole);
+}
