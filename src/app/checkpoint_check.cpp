@@ -10,6 +10,7 @@
 #include "emcontact/contact/detection.hpp"  // entry_rule, kernels::facet_outside
 #include "emcontact/error.hpp"
 #include "emcontact/input/echo.hpp"
+#include "emcontact/output/parallel_hdf5.hpp"
 
 namespace emc::app {
 namespace {
@@ -75,7 +76,10 @@ void check_scalars(const output::Checkpoint& c, const std::string& path) {
 }
 
 void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
-  const std::size_t n = sim.model.X.size();
+  const auto& comm = *sim.disc->comm();  // this rank's block of the per-node values
+  const auto n = static_cast<std::size_t>(
+      output::block_of(static_cast<long long>(sim.model.X.size()), comm.getRank(), comm.getSize())
+          .count);
   auto sized = [&](const std::vector<double>& v, const char* name, bool may_be_empty) {
     if (v.size() != n && !(may_be_empty && v.empty()))
       refuse(path, std::string("the checkpoint's ") + name + " has " + std::to_string(v.size()) +

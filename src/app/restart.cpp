@@ -9,6 +9,7 @@
 #include "emcontact/error.hpp"
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/checkpoint.hpp"
+#include "emcontact/output/parallel_hdf5.hpp"
 #include "emcontact/parallel.hpp"
 #include "emcontact/time/interrupt.hpp"
 
@@ -137,27 +138,29 @@ void save_checkpoint(const Simulation& sim, const RootGather& dofs, const output
   int has = s.last_increment.is_null() ? 0 : 1;
   if (has) c.last_increment = dofs(*s.last_increment);
   gather_active(sim, c);
-  if (sim.disc->comm()->getRank() == 0) output::write_checkpoint(dir, name, c);
-  sim.disc->comm()->barrier();
+  output::write_checkpoint_collectively(raw_comm(*sim.disc->comm()), dir, name, c,
+                                        sim.model.X.size());
 }
 
 RestartInput read_restart(const Simulation& sim, const std::string& path) {
   const auto& comm = *sim.disc->comm();
+  const MPI_Comm raw = raw_comm(comm);
   RestartInput in;
   std::string error;
-  if (comm.getRank() == 0) {
-    try {
-      in.checkpoint = output::read_checkpoint(path, checkpoint_shape(sim, path));
-      check_checkpoint(in.checkpoint, sim, path);
-      check_time(in.checkpoint, *sim.stepper, path);
-      in.rows = kept_monitors(in.checkpoint, path);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
+  try {  // every rank its block of the per-node values, the rest whole
+    in.checkpoint = output::read_checkpoint_collectively(raw, path, checkpoint_shape(sim, path));
+  } catch (const std::exception& e) {
+    throw InputError(e.what());  // the same refusal on every rank
   }
-  std::vector<char> msg(error.begin(), error.end());
-  broadcast_vector(comm, msg);
-  if (!msg.empty()) throw InputError(std::string(msg.begin(), msg.end()));
+  try {
+    check_checkpoint(in.checkpoint, sim, path);
+    check_time(in.checkpoint, *sim.stepper, path);
+    if (comm.getRank() == 0) in.rows = kept_monitors(in.checkpoint, path);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  error = output::first_error(raw, error);
+  if (!error.empty()) throw InputError(error);
   return in;
 }
 

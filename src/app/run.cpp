@@ -92,7 +92,7 @@ output::MonitorRow monitor_row(const fem::Discretization& disc, const time::Stat
 }
 
 /// The monitors (rank 0), the fields (every rank its block of rows: node_rows, tet_rows) and the
-/// checkpoints' gather to rank 0 (dofs).
+/// checkpoints' blocks (dofs).
 struct Writers {
   std::unique_ptr<output::MonitorWriter> monitors;
   std::unique_ptr<output::FieldWriter> fields;
@@ -269,7 +269,9 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
 
   const output::Settings out = output::settings(P.sublist("Output"));
   Summary sum;
-  auto dofs = std::make_unique<RootGather>(disc.owned_map(), 3LL * model.num_nodes());
+  // this rank's block of the per-node values of checkpoints (written and read by every rank)
+  const auto block = output::block_of(3LL * model.num_nodes(), comm->getRank(), comm->getSize());
+  auto dofs = std::make_unique<RootGather>(disc.owned_map(), block.first, block.count);
   auto row0 = monitor_row(disc, state, time::StepReport{});
   // --restart: the checkpoint and its monitors are read, checked and loaded before anything is
   // written (a refused restart leaves the output directory as it was, or not created)
@@ -279,6 +281,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
     row0 = apply_restart(*sim, *dofs, restart, opt.restart);
   }
   const OutputDirectory output_dir(opt, out, *comm);  // held open and locked until the run returns
+  const output::Directory dir = output::shared_directory(raw_comm(*comm), output_dir.dir());
   sum.output_dir = output_dir.path();
   Writers w = make_writers(disc, output_dir, out.every, std::move(dofs));
   const bool root = comm->getRank() == 0;
@@ -305,7 +308,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   Teuchos::broadcast(*comm, 0, 1, &kept);
   auto stop_on_sigterm = [&]() {
     if (root) w.monitors->flush(true);
-    throw RunError(stop_checkpoint(*sim, *w.dofs, output_dir.dir(), kept));
+    throw RunError(stop_checkpoint(*sim, *w.dofs, dir, kept));
   };
   try {
     while (!stepper.finished()) {
@@ -334,7 +337,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         // monitors first: a kill between the two leaves rows beyond the checkpoint (ignored by
         // --restart), never a checkpoint without its row (found by kill_and_restart)
         if (root) w.monitors->flush(true);
-        save_checkpoint(*sim, *w.dofs, output_dir.dir(), "checkpoint.h5");
+        save_checkpoint(*sim, *w.dofs, dir, "checkpoint.h5");
         kept = state.step;
         sim->solver->invalidate();  // a restart starts with a fresh one: so does this run
         sim->elim->forget_graph();
@@ -348,7 +351,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
     if (root) w.monitors->flush(true);
     const std::string file = sum.output_dir + "/checkpoint.h5";
     if (std::string(e.what()).find("stopped by SIG") != std::string::npos) throw;
-    save_checkpoint(*sim, *w.dofs, output_dir.dir(), "checkpoint.h5");  // to look at or restart
+    save_checkpoint(*sim, *w.dofs, dir, "checkpoint.h5");  // to look at or restart
     throw RunError(std::string(e.what()) + "; the last accepted step is in " + file);
   } catch (const Error&) {
     progress.finish();

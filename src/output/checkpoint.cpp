@@ -50,10 +50,27 @@ struct Length {
   throw Error(path + ": the checkpoint dataset " + name + " " + what);
 }
 
+/// Values [first, first + count) of the 1-D dataset `set` (its file dataspace `space`).
+std::vector<double> read_slice(hid_t set, hid_t space, const char* name, const std::string& path,
+                               const detail::Slice& slice) {
+  std::vector<double> v(slice.count);
+  const hsize_t start = slice.first, count = slice.count;
+  const Id mem{H5Screate_simple(1, &count, nullptr), H5Sclose};
+  const bool ok = mem.id >= 0 &&
+                  (count == 0 ? H5Sselect_none(space) >= 0 && H5Sselect_none(mem.id) >= 0
+                              : H5Sselect_hyperslab(space, H5S_SELECT_SET, &start, nullptr, &count,
+                                                    nullptr) >= 0) &&
+                  H5Dread(set, H5T_NATIVE_DOUBLE, mem.id, space, H5P_DEFAULT, v.data()) >= 0;
+  if (!ok) throw Error(path + ": cannot read the checkpoint dataset " + name);
+  return v;
+}
+
 /// The dataset `name` of `file`: 64-bit floats in one dimension, of a length `len` allows and
-/// the file can hold, all checked before it is read.
+/// the file can hold, all checked before it is read; with `slice`, only its values [first,
+/// first + count) of a dataset that has any (none of an empty one); `length` gets the dataset's.
 std::vector<double> read_vector(hid_t file, const char* name, const std::string& path,
-                                const Length& len) {
+                                const Length& len, const detail::Slice* slice = nullptr,
+                                std::size_t* length = nullptr) {
   const Id set{H5Dopen2(file, name, H5P_DEFAULT), H5Dclose};
   if (set.id < 0) throw Error(path + ": not an emcontact checkpoint (no dataset " + name + ")");
   const Id type{H5Dget_type(set.id), H5Tclose};
@@ -73,6 +90,8 @@ std::vector<double> read_vector(hid_t file, const char* name, const std::string&
   if (!len.ok(static_cast<std::size_t>(n)))
     refuse_dataset(path, name,
                    "has " + std::to_string(n) + " values (allowed: " + len.allowed + ")");
+  if (length) *length = static_cast<std::size_t>(n);
+  if (slice && n > 0) return read_slice(set.id, space.id, name, path, *slice);
   std::vector<double> v(n);
   if (n && H5Dread(set.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0)
     throw Error(path + ": cannot read the checkpoint dataset " + name);
@@ -96,18 +115,23 @@ Length dof_length(const CheckpointShape* shape, bool optional) {
 }
 
 /// The datasets, each checked against `shape` (if any) and the ones read before it.
-void read_datasets(hid_t file, Checkpoint& c, const std::string& path,
-                   const CheckpointShape* shape) {
+void read_datasets(hid_t file, Checkpoint& c, const std::string& path, const CheckpointShape* shape,
+                   const detail::Slice* slice = nullptr, bool* increment = nullptr) {
   c.set_scalars(read_vector(file, "scalars", path,
                             {[](std::size_t n) { return n >= 6 && n <= 8; }, "6 to 8"}),
                 path);
-  c.u = read_vector(file, "u", path, dof_length(shape, false));
-  c.V = read_vector(file, "V", path,
-                    {[&](std::size_t n) { return n == c.u.size(); },
-                     std::to_string(c.u.size()) + ", as many as u"});
+  std::size_t values = 0;
+  c.u = read_vector(file, "u", path, dof_length(shape, false), slice, &values);
+  c.V = read_vector(
+      file, "V", path,
+      {[&](std::size_t n) { return n == values; }, std::to_string(values) + ", as many as u"},
+      slice);
+  std::size_t increments = 0;
   c.last_increment = read_vector(file, "last_increment", path,
-                                 {[&](std::size_t n) { return n == c.u.size() || n == 0; },
-                                  "0 or " + std::to_string(c.u.size()) + ", as many as u"});
+                                 {[&](std::size_t n) { return n == values || n == 0; },
+                                  "0 or " + std::to_string(values) + ", as many as u"},
+                                 slice, &increments);
+  if (increment) *increment = increments > 0;
   const std::size_t most = shape ? shape->max_entries * kActiveValues : std::size_t(-1);
   c.active = read_vector(
       file, "active", path,
@@ -160,6 +184,27 @@ Checkpoint read(const std::string& path, const CheckpointShape* shape) {
 }
 
 }  // namespace
+
+namespace detail {
+
+Checkpoint read_block(const std::string& path, const CheckpointShape& shape, const Slice& slice,
+                      std::uint64_t& sum, bool& increment) {
+  input::check_regular_file(path, "checkpoint");
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) throw Error(path + ": not an HDF5 file");
+  Checkpoint c;
+  try {
+    sum = read_integrity(file, c, path, &shape);
+    read_datasets(file, c, path, &shape, &slice, &increment);
+  } catch (...) {
+    H5Fclose(file);
+    throw;
+  }
+  H5Fclose(file);
+  return c;
+}
+
+}  // namespace detail
 
 std::vector<double> Checkpoint::scalars() const {
   return {double(step),       t,         dt, last_h, double(good_steps), double(last_iterations),

@@ -34,14 +34,32 @@ void fnv(std::uint64_t& h, const std::vector<double>& v) {
 
 }  // namespace
 
-std::uint64_t checksum(const Checkpoint& c) {
+std::uint64_t checksum_head(const Checkpoint& c) {
   std::uint64_t h = kFnvOffset;
   fnv(h, c.scalars());
-  for (const auto* v : {&c.u, &c.V, &c.last_increment, &c.active, &c.normal_force}) fnv(h, *v);
+  return h;
+}
+
+void fnv_bytes(std::uint64_t& h, const void* data, std::size_t bytes) {
+  fnv(h, data, bytes);
+}
+
+void fnv_length(std::uint64_t& h, std::uint64_t n) {
+  fnv(h, &n, sizeof n);
+}
+
+void checksum_tail(std::uint64_t& h, const Checkpoint& c) {
+  for (const auto* v : {&c.active, &c.normal_force}) fnv(h, *v);
   // the entries' states only when there are some: a checkpoint written before them keeps its
   // sum, and one whose states were removed does not match its own
   if (!c.state.empty()) fnv(h, c.state);
   fnv(h, c.model.data(), c.model.size());
+}
+
+std::uint64_t checksum(const Checkpoint& c) {
+  std::uint64_t h = checksum_head(c);
+  for (const auto* v : {&c.u, &c.V, &c.last_increment}) fnv(h, *v);
+  checksum_tail(h, c);
   return h;
 }
 

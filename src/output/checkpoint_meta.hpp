@@ -13,6 +13,23 @@ namespace emc::output::detail {
 
 /// FNV-1a 64 over the stored scalars, arrays (with their lengths) and the model fingerprint.
 std::uint64_t checksum(const Checkpoint& c);
+/// Its parts, for a sum over blocks held by several ranks (checkpoint_parallel.cpp): the sum of
+/// the scalars, then for each of u, V, last_increment its length (fnv_length) and its values in
+/// order (fnv_bytes), then checksum_tail (the active set, its states and the model).
+std::uint64_t checksum_head(const Checkpoint& c);
+void fnv_bytes(std::uint64_t& h, const void* data, std::size_t bytes);
+void fnv_length(std::uint64_t& h, std::uint64_t n);
+void checksum_tail(std::uint64_t& h, const Checkpoint& c);
+
+/// Values [first, first + count) of u, V and last_increment.
+struct Slice {
+  unsigned long long first = 0, count = 0;
+};
+/// The checkpoint at `path` with only `slice` of u, V and last_increment (each dataset's length
+/// checked against `shape` as by read_checkpoint; a last_increment of none stays empty), the
+/// stored checksum in `sum`, not compared; `increment`: whether last_increment has values.
+Checkpoint read_block(const std::string& path, const CheckpointShape& shape, const Slice& slice,
+                      std::uint64_t& sum, bool& increment);
 
 void write_string_attribute(hid_t file, const char* name, const std::string& s,
                             const std::string& path);

@@ -39,13 +39,6 @@ std::string broadcast(MPI_Comm comm, const std::string& s, int root = 0) {
   return out;
 }
 
-/// The error text of the lowest rank that has one, on every rank ("" if none; collective).
-std::string first_error(MPI_Comm comm, const std::string& error) {
-  int mine = error.empty() ? INT_MAX : rank_of(comm), first = INT_MAX;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
-  return first == INT_MAX ? std::string() : broadcast(comm, error, first);
-}
-
 /// The memory dataspace of this rank's rows of `d` (a scalar's, or one row when it has none).
 hid_t memory_space(const SlabDataset& d) {
   if (d.width == 0) return H5Screate(H5S_SCALAR);
@@ -81,7 +74,9 @@ bool write_slab(hid_t file, hid_t dxpl, const SlabDataset& d, int rank, std::str
   }
   static const double none = 0;  // HDF5 refuses a null buffer even with nothing selected
   const void* data = d.data != nullptr ? d.data : &none;
-  if (H5Dwrite(set.get(), d.mem_type, mem.get(), space.get(), dxpl, data) < 0) {
+  // an empty dataset has no storage to write (MPI-IO fails on it): created, not written
+  if ((d.width == 0 || d.rows > 0) &&
+      H5Dwrite(set.get(), d.mem_type, mem.get(), space.get(), dxpl, data) < 0) {
     error = "writing dataset " + d.name + ": " + hdf5_error_text();
     return false;
   }
@@ -95,7 +90,7 @@ bool write_slab(hid_t file, hid_t dxpl, const SlabDataset& d, int rank, std::str
 /// Every rank writes its rows of `sets` into the existing (empty) file `via` (collective; the
 /// ranks leave together at the first step that failed on any of them).
 bool write_sets(MPI_Comm comm, const std::string& via, const std::vector<SlabDataset>& sets,
-                std::string& error) {
+                const std::function<void(hid_t)>& attributes, std::string& error) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   Handle dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose);
   const bool lists = fapl.valid() && dxpl.valid() &&
@@ -111,12 +106,26 @@ bool write_sets(MPI_Comm comm, const std::string& via, const std::vector<SlabDat
   const int rank = rank_of(comm);
   for (const SlabDataset& d : sets)
     if (!all_ok(comm, write_slab(file.get(), dxpl.get(), d, rank, error))) return false;
+  bool written = true;
+  if (attributes) try {
+      attributes(file.get());
+    } catch (const std::exception& e) {
+      error = e.what();
+      written = false;
+    }
+  if (!all_ok(comm, written)) return false;
   const bool closed = file.reset();  // flushes every rank's writes
   if (!closed) error = "HDF5 cannot close the file: " + hdf5_error_text();
   return all_ok(comm, closed);
 }
 
 }  // namespace
+
+std::string first_error(MPI_Comm comm, const std::string& error) {
+  int mine = error.empty() ? INT_MAX : rank_of(comm), first = INT_MAX;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  return first == INT_MAX ? std::string() : broadcast(comm, error, first);
+}
 
 Block block_of(long long n, int rank, int ranks) {
   const long long first = n * rank / ranks, end = n * (rank + 1) / ranks;
@@ -172,7 +181,8 @@ Directory shared_directory(MPI_Comm comm, const Directory& root_dir) {
 }
 
 void write_hdf5_collectively(MPI_Comm comm, const Directory& dir, const std::string& name,
-                             const std::vector<SlabDataset>& sets) {
+                             const std::vector<SlabDataset>& sets,
+                             const std::function<void(hid_t file)>& attributes) {
   const bool root = rank_of(comm) == 0;
   const std::string path = dir.path(name);
   TempFile tmp;
@@ -190,7 +200,7 @@ void write_hdf5_collectively(MPI_Comm comm, const Directory& dir, const std::str
   // directory or a link planted at its name redirects nothing
   const std::string via = "/proc/self/fd/" + std::to_string(dir.fd()) + "/" +
                           broadcast(comm, root ? tmp.name : std::string());
-  const bool written = write_sets(comm, via, sets, error);
+  const bool written = write_sets(comm, via, sets, attributes, error);
   if (root) {
     try {
       if (written) {

@@ -11,20 +11,22 @@
 
 namespace emc::app {
 
-/// Writes the complete state of `sim` to the file `name` of `dir` (collective; rank 0 writes,
-/// atomically; `dir` is used on rank 0 only).
+/// Writes the complete state of `sim` to the file `name` of `dir` (collective: every rank writes
+/// its block of the per-node values, `dofs` the block's gather, output::block_of; `dir` is every
+/// rank's output::shared_directory; atomically).
 void save_checkpoint(const Simulation& sim, const RootGather& dofs, const output::Directory& dir,
                      const std::string& name);
 
-/// What --restart continues from: the checkpoint and the monitors of its directory up to its
-/// step (on rank 0; empty on the other ranks).
+/// What --restart continues from: the checkpoint (this rank's block of the per-node values, the
+/// rest whole) and the monitors of its directory up to its step (on rank 0; empty elsewhere).
 struct RestartInput {
   output::Checkpoint checkpoint;
   std::vector<output::MonitorRow> rows;
 };
 
 /// Reads the checkpoint `path` and the monitors.csv beside it and checks them completely, before
-/// anything is written (collective). Throws InputError with rank 0's message naming the file if
+/// anything is written (collective). Throws InputError on every rank with the lowest failing
+/// rank's message naming the file if
 /// the checkpoint cannot be read, was written for another model (fingerprint), is corrupt or
 /// forged (checksum, a dataset of another shape, an index, size or value that does not fit, see
 /// check_checkpoint), disagrees with its monitors row, or is at or past Time/end.

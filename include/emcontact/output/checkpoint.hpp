@@ -1,7 +1,10 @@
 #pragma once
 // Checkpoint files: the complete state of a run at the end of a step (displacements,
 // velocities, the predictor's last increment, the active contact set with its projection data,
-// normal forces and Coulomb states, step size and counters) in HDF5, written atomically by rank 0.
+// normal forces and Coulomb states, step size and counters) in HDF5, written atomically: by
+// one rank whole, or by every rank together, each its block of the per-node arrays.
+#include <mpi.h>
+
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -50,6 +53,20 @@ struct CheckpointShape {
 /// naming it.
 void write_checkpoint(const Directory& dir, const std::string& name, const Checkpoint& c);
 void write_checkpoint(const std::string& path, const Checkpoint& c);
+/// Collective over `comm`: writes `name` of `dir` (every rank's output::shared_directory) as
+/// write_checkpoint writes the whole, the same bytes and checksum, with parallel HDF5: `mine`
+/// holds this rank's block (output::block_of(values, rank, ranks)) of u, V and last_increment
+/// (empty on every rank: none), rank 0's the other parts (the others' are ignored). Nothing is
+/// gathered: the checksum is summed along the ranks. One rank: write_checkpoint. Throws
+/// emc::Error on every rank if any failed; the previous file is then unchanged.
+void write_checkpoint_collectively(MPI_Comm comm, const Directory& dir, const std::string& name,
+                                   const Checkpoint& mine, unsigned long long values);
+/// Collective over `comm`: read_checkpoint(path, shape), each rank reading only its block
+/// (output::block_of(shape.values, rank, ranks)) of u, V and last_increment and the other
+/// parts whole; the checksum summed along the ranks. Any rank's refusal (a rank that cannot
+/// read its part among them) is thrown on every rank, the lowest rank's message.
+Checkpoint read_checkpoint_collectively(MPI_Comm comm, const std::string& path,
+                                        const CheckpointShape& shape);
 /// Reads a checkpoint; throws emc::Error naming the file and what is wrong: not a regular
 /// file, not a checkpoint, written before checkpoints had a model fingerprint and checksum, a
 /// dataset or attribute of another type, rank or length than written (checked before it is

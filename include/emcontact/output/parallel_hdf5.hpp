@@ -47,9 +47,14 @@ Directory shared_directory(MPI_Comm comm, const Directory& root_dir);
 
 /// Collective over `comm`: writes `sets` (the same names, types and shapes on every rank, each
 /// rank its own rows) into the file `name` of `dir` (every rank's shared_directory), replacing
-/// it atomically. Throws emc::Error naming the file on every rank if any rank failed; the file
-/// is then unchanged and no temporary is left.
+/// it atomically; then `attributes` (if given) on every rank with the open file, writing the
+/// same attributes everywhere (collective in parallel HDF5). Throws emc::Error naming the file
+/// on every rank if any rank failed; the file is then unchanged and no temporary is left.
 void write_hdf5_collectively(MPI_Comm comm, const Directory& dir, const std::string& name,
-                             const std::vector<SlabDataset>& sets);
+                             const std::vector<SlabDataset>& sets,
+                             const std::function<void(hid_t file)>& attributes = {});
+
+/// The error text of the lowest rank that has one, on every rank ("" if none; collective).
+std::string first_error(MPI_Comm comm, const std::string& error);
 
 }  // namespace emc::output
