@@ -103,3 +103,36 @@ hostile_checkpoint_of_two_ranks_for_another_model_refused_on_three() {
   expect_err "written for another model.*young" && pio_one_error_line || return 1
   [ "$(cd ck && ls -l --time-style=+%s.%N | md5sum)" = "$before" ] || { echo "ck/ changed"; return 1; }
 }
+
+# A checkpoint written by 2 ranks together (each its block of u and V), restarted on 3: a piece
+# missing (no V) or one value changed in the last rank's block (the checksum, summed along the
+# ranks) is refused by every rank with one line before anything is written; the good one runs.
+hostile_checkpoint_of_two_ranks_missing_or_changed_piece_refused_on_three() {
+  emc_good_input in.xml
+  "${MPIRUN[@]}" -np 2 "$EMC" in.xml --set "Output/checkpoint every=1" --set Time/end=0.05 \
+    --set Output/progress=false --set Output/plot=false --output ck >ck.log 2>&1 ||
+    { echo "the 2-rank run failed: $(tail -2 ck.log)"; return 1; }
+  local before
+  before=$(cd ck && ls -l --time-style=+%s.%N | md5sum)
+  cp -r ck no_v && cp -r ck changed || return 1
+  /usr/bin/python3 - <<'PY' || return 1
+import h5py
+with h5py.File('no_v/checkpoint.h5', 'r+') as f:
+    del f['V']
+with h5py.File('changed/checkpoint.h5', 'r+') as f:
+    u = f['u'][:]
+    u[-1] += 1e-9  # the last rank's block
+    f['u'][:] = u
+PY
+  expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
+    --set Output/progress=false --restart no_v/checkpoint.h5 || return 1
+  expect_err "no_v/checkpoint\.h5: not an emcontact checkpoint \(no dataset V\)" &&
+    pio_one_error_line || return 1
+  expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
+    --set Output/progress=false --restart changed/checkpoint.h5 || return 1
+  expect_err "changed/checkpoint\.h5: the checksum does not match the contents" &&
+    pio_one_error_line || return 1
+  [ "$(cd ck && ls -l --time-style=+%s.%N | md5sum)" = "$before" ] || { echo "ck/ changed"; return 1; }
+  expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
+    --set Output/progress=false --set Output/plot=false --restart ck/checkpoint.h5
+}
