@@ -85,8 +85,8 @@ void write_checkpoint_collectively(MPI_Comm comm, const Directory& dir, const st
   const auto on_root = [&](const char* set, const std::vector<double>& v) {
     unsigned long long n = v.size();
     MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, comm);
-    return SlabDataset{set, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, n, 1, 0, rank == 0 ? n : 0,
-                       v.data()};
+    return SlabDataset{set, H5T_IEEE_F64LE,    H5T_NATIVE_DOUBLE, n, 1,
+                       0,   rank == 0 ? n : 0, v.data()};
   };
   const auto block = [&](const char* set, const std::vector<double>& v, bool present) {
     const unsigned long long n = present ? values : 0;
@@ -99,13 +99,11 @@ void write_checkpoint_collectively(MPI_Comm comm, const Directory& dir, const st
                        present ? static_cast<unsigned long long>(b.count) : 0,
                        v.data()};
   };
-  const std::vector<SlabDataset> sets = {on_root("scalars", scalars),
-                                         block("u", mine.u, true),
-                                         block("V", mine.V, true),
-                                         block("last_increment", mine.last_increment, increment),
-                                         on_root("active", mine.active),
-                                         on_root("normal_force", mine.normal_force),
-                                         on_root("state", mine.state)};
+  const std::vector<SlabDataset> sets = {
+      on_root("scalars", scalars),    block("u", mine.u, true),
+      block("V", mine.V, true),       block("last_increment", mine.last_increment, increment),
+      on_root("active", mine.active), on_root("normal_force", mine.normal_force),
+      on_root("state", mine.state)};
   const std::string path = dir.path(name);
   write_hdf5_collectively(comm, dir, name, sets, [&](hid_t file) {
     detail::write_string_attribute(file, "model", model, path);
@@ -122,10 +120,10 @@ Checkpoint read_checkpoint_collectively(MPI_Comm comm, const std::string& path,
   bool increment = false;
   std::string error;
   try {
-    c = detail::read_block(path, shape,
-                           {static_cast<unsigned long long>(b.first),
-                            static_cast<unsigned long long>(b.count)},
-                           stored, increment);
+    c = detail::read_block(
+        path, shape,
+        {static_cast<unsigned long long>(b.first), static_cast<unsigned long long>(b.count)},
+        stored, increment);
   } catch (const std::exception& e) {
     error = e.what();
     if (error.empty()) error = path + ": cannot read the checkpoint";
