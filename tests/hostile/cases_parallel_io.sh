@@ -86,15 +86,21 @@ pio_one_error_line() {
   [ "$(grep -c '^error:' last.err)" = 1 ] || { echo "not one error line:"; head -5 last.err; return 1; }
 }
 
-# A checkpoint written on 2 ranks, restarted on 3 with another mesh (a longer block) or another
-# material: refused before anything is written, one line, on every rank count alike.
-hostile_checkpoint_of_two_ranks_for_another_model_refused_on_three() {
+# pio_two_rank_checkpoint: the good box on 2 ranks into ck/, a checkpoint every step; the
+# listing of ck/ (names, sizes, times) into the variable `before`.
+pio_two_rank_checkpoint() {
   emc_good_input in.xml
   "${MPIRUN[@]}" -np 2 "$EMC" in.xml --set "Output/checkpoint every=1" --set Output/every=1 \
     --set Output/progress=false --set Output/plot=false --output ck >ck.log 2>&1 ||
     { echo "the 2-rank run failed: $(tail -2 ck.log)"; return 1; }
-  local before
   before=$(cd ck && ls -l --time-style=+%s.%N | md5sum)
+}
+
+# A checkpoint written on 2 ranks, restarted on 3 with another mesh (a longer block) or another
+# material: refused before anything is written, one line, on every rank count alike.
+hostile_checkpoint_of_two_ranks_for_another_model_refused_on_three() {
+  local before
+  pio_two_rank_checkpoint || return 1
   expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set "Bodies/block/Mesh/upper corner={0.2, 0.1, 0.1}" \
     --set Time/end=0.05 --set Output/progress=false --restart ck/checkpoint.h5 || return 1
   expect_err "ck/checkpoint\.h5: written for another model" && pio_one_error_line || return 1
@@ -108,12 +114,8 @@ hostile_checkpoint_of_two_ranks_for_another_model_refused_on_three() {
 # missing (no V) or one value changed in the last rank's block (the checksum, summed along the
 # ranks) is refused by every rank with one line before anything is written; the good one runs.
 hostile_checkpoint_of_two_ranks_missing_or_changed_piece_refused_on_three() {
-  emc_good_input in.xml
-  "${MPIRUN[@]}" -np 2 "$EMC" in.xml --set "Output/checkpoint every=1" --set Time/end=0.05 \
-    --set Output/progress=false --set Output/plot=false --output ck >ck.log 2>&1 ||
-    { echo "the 2-rank run failed: $(tail -2 ck.log)"; return 1; }
   local before
-  before=$(cd ck && ls -l --time-style=+%s.%N | md5sum)
+  pio_two_rank_checkpoint || return 1
   cp -r ck no_v && cp -r ck changed || return 1
   /usr/bin/python3 - <<'PY' || return 1
 import h5py
