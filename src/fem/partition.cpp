@@ -105,21 +105,39 @@ long long block_begin(long long ne, int r, int np) {
   return ne * r / np;
 }
 
-/// The partition for the part of every tet: my tets along the curve, the lowest touching
-/// rank owning each node.
-Partition assemble(const Model& m, const std::vector<int>& part_of_tet,
-                   const std::vector<std::uint64_t>& key, int rank) {
-  Partition p;
-  p.node_owner.assign(m.num_nodes(), INT_MAX);
-  for (int e = 0; e < m.num_tets(); ++e) {
-    for (int a = 0; a < 4; ++a) {
-      int& owner = p.node_owner[m.tets[4 * e + a]];
-      owner = std::min(owner, part_of_tet[e]);
-    }
-    if (part_of_tet[e] == rank) p.my_tets.push_back(e);
+/// The owner of every node of m (all its tets held, `part` the rank of each): among the k ranks
+/// with a tet touching node n, in ascending order, the (n mod k)-th, so that the interface
+/// nodes are shared out evenly (given all to the lowest rank, rank 0 owned the most rows and
+/// had the largest peak memory); -1 where no tet touches it. Beyond 64 ranks the lowest.
+std::vector<int> node_owners(const Model& m, const std::vector<int>& part, int ranks) {
+  std::vector<int> owner(m.num_nodes(), -1);
+  if (ranks > 64) {
+    for (int e = 0; e < m.num_tets(); ++e)
+      for (int a = 0; a < 4; ++a) {
+        int& o = owner[m.tets[4 * std::size_t(e) + a]];
+        o = o < 0 ? part[e] : std::min(o, part[e]);
+      }
+    return owner;
   }
-  for (int& owner : p.node_owner)
-    if (owner == INT_MAX) owner = -1;
+  std::vector<std::uint64_t> touching(m.num_nodes(), 0);
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (int a = 0; a < 4; ++a) touching[m.tets[4 * std::size_t(e) + a]] |= 1ULL << part[e];
+  for (int n = 0; n < m.num_nodes(); ++n) {
+    std::uint64_t mask = touching[n];
+    if (mask == 0) continue;
+    for (int skip = n % __builtin_popcountll(mask); skip > 0; --skip) mask &= mask - 1;
+    owner[n] = __builtin_ctzll(mask);
+  }
+  return owner;
+}
+
+/// The partition for the part of every tet: my tets along the curve, the owners of node_owners.
+Partition assemble(const Model& m, const std::vector<int>& part_of_tet,
+                   const std::vector<std::uint64_t>& key, int rank, int ranks) {
+  Partition p;
+  p.node_owner = node_owners(m, part_of_tet, ranks);
+  for (int e = 0; e < m.num_tets(); ++e)
+    if (part_of_tet[e] == rank) p.my_tets.push_back(e);
   sort_along_curve(p.my_tets, key);
   std::vector<int> used;
   used.reserve(4 * p.my_tets.size());
@@ -150,7 +168,7 @@ Partition partition(const Model& m, const Teuchos::RCP<const Comm>& comm) {
     const long long begin = block_begin(ne, rank, np), end = block_begin(ne, rank + 1, np);
     part_of_tet = allgather(*comm, zoltan2_parts(begin, centroids(m, begin, end), comm));
   }
-  return assemble(m, part_of_tet, morton_keys(m), rank);
+  return assemble(m, part_of_tet, morton_keys(m), rank, np);
 }
 
 namespace {
@@ -320,14 +338,7 @@ Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm) {
   std::vector<int> owner;
   std::vector<TetList> lists;
   if (rank == 0) {
-    owner.assign(m.num_nodes(), INT_MAX);
-    for (long long e = 0; e < ne; ++e)
-      for (int a = 0; a < 4; ++a) {
-        int& o = owner[m.tets[4 * e + a]];
-        o = std::min(o, part[e]);
-      }
-    for (int& o : owner)
-      if (o == INT_MAX) o = -1;
+    owner = node_owners(m, part, np);
     lists = tet_lists(m, part, owner, np);
   }
   broadcast_vector(*comm, owner);

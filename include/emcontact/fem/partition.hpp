@@ -3,7 +3,8 @@
 // multi-jagged geometric partition of the tets' centroids (recursive cuts of space into boxes
 // of equal tet counts). Within a part the tets are ordered along a Morton (Z-order) curve of
 // their centroids, for memory locality in the element loops and the colouring. A node is owned
-// by the lowest rank that has a tet touching it. The same model and rank count always give the
+// by one of the ranks that have a tet touching it, the interface nodes shared out evenly among
+// them (node_owners in partition.cpp). The same model and rank count always give the
 // same partition; on one rank Zoltan2 is not called.
 #include <Teuchos_RCP.hpp>
 #include <vector>
