@@ -146,21 +146,14 @@ RestartInput read_restart(const Simulation& sim, const std::string& path) {
   const auto& comm = *sim.disc->comm();
   const MPI_Comm raw = raw_comm(comm);
   RestartInput in;
-  std::string error;
-  try {  // every rank its block of the per-node values, the rest whole
-    in.checkpoint = output::read_checkpoint_collectively(raw, path, checkpoint_shape(sim, path));
-  } catch (const std::exception& e) {
-    throw InputError(e.what());  // the same refusal on every rank
-  }
-  try {
+  // every rank its block of the per-node values and the rest whole (the same refusal on every
+  // rank), then each rank's checks of its block, rank 0's of the monitors
+  in.checkpoint = output::read_checkpoint_collectively(raw, path, checkpoint_shape(sim, path));
+  output::on_every_rank(raw, [&] {
     check_checkpoint(in.checkpoint, sim, path);
     check_time(in.checkpoint, *sim.stepper, path);
     if (comm.getRank() == 0) in.rows = kept_monitors(in.checkpoint, path);
-  } catch (const std::exception& e) {
-    error = e.what();
-  }
-  error = output::first_error(raw, error);
-  if (!error.empty()) throw InputError(error);
+  });
   return in;
 }
 

@@ -223,7 +223,9 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   auto meshes = build_meshes(P, sim->in.dir, opt.input, *comm);
   sim->model = fem::build_model(P, std::move(meshes), opt.input);
   auto pairs = contact::build_pairs(P, sim->model, opt.input);
-  contact::mark_massless_slaves(pairs, sim->model, opt.input);  // before the element data are built
+  // before the element data are built; rank 0 fits (it holds every tet): its refusal on all
+  output::on_every_rank(raw_comm(*comm),
+                        [&] { contact::mark_massless_slaves(pairs, sim->model, opt.input); });
   // rank 0 hands out the tets: from here on each rank holds its own and a layer of ghosts
   auto part = fem::distribute(sim->model, comm);
   sim->disc = std::make_unique<fem::Discretization>(sim->model, std::move(part), comm);

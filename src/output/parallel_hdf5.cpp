@@ -153,6 +153,19 @@ void on_root(MPI_Comm comm, const std::function<void()>& work) {
   if (!error.empty()) throw Error(error);
 }
 
+void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
+  if (ranks_of(comm) == 1) return work();
+  std::string error;
+  try {
+    work();
+  } catch (const std::exception& e) {
+    error = e.what();
+    if (error.empty()) error = "rank " + std::to_string(rank_of(comm)) + " failed";
+  }
+  error = first_error(comm, error);
+  if (!error.empty()) throw Error(error);
+}
+
 Directory shared_directory(MPI_Comm comm, const Directory& root_dir) {
   const bool root = rank_of(comm) == 0;
   struct stat st {};

@@ -9,3 +9,15 @@ hostile_massless_slave_without_nodes_behind() {
   expect_short_err 1
   test ! -e out/monitors.csv
 }
+
+# The same on 2 ranks: rank 0 fits (it holds every tet before handing them out), and its refusal
+# stops both ranks with the one line, at once (not after the error handler's wait and an abort).
+hostile_massless_slave_without_nodes_behind_two_ranks() {
+  expect_exit 1 "${MPIRUN[@]}" -np 2 "$EMC" "$HERE/../regression/bars.xml" --output out \
+    "--set=Contact/A on B/massless slave=true" "--set=Bodies/A/Mesh/upper corner={1, 1, 0.05}"
+  expect_err "bars.xml: Contact/A on B/massless slave: .*do not span 3D.*allowed: "
+  # one error line (mpiexec adds its own note on the exit code), no abort
+  [ "$(grep -c '^error:' last.err)" = 1 ] || { echo "not one error line:"; head -5 last.err; return 1; }
+  ! grep -q MPI_ABORT last.err || { echo "aborted:"; head -5 last.err; return 1; }
+  test ! -e out/monitors.csv
+}

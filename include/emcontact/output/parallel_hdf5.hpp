@@ -39,6 +39,12 @@ int ranks_of(MPI_Comm comm);
 /// emc::Error with its message (so that the other ranks do not wait for rank 0 forever).
 void on_root(MPI_Comm comm, const std::function<void()>& work);
 
+/// Collective over `comm`: runs `work` on every rank; if it throws on any, every rank throws
+/// emc::Error with the lowest failing rank's message (a refusal found on one rank only, or on
+/// each rank for its own part, stops every rank with one line and no hang). One rank: `work`
+/// alone, its exception as thrown.
+void on_every_rank(MPI_Comm comm, const std::function<void()>& work);
+
 /// Collective over `comm`: this rank's descriptor of rank 0's output directory `root_dir`
 /// (ignored elsewhere): rank 0's own copy; the other ranks open the path rank 0 gives and
 /// refuse (emc::Error on every rank) a directory that is not the one rank 0 holds (another
