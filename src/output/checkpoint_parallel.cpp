@@ -14,15 +14,9 @@ namespace {
 
 constexpr int kTagSum = 4502;
 
-int rank_in(MPI_Comm comm) {
-  int r = 0;
-  MPI_Comm_rank(comm, &r);
-  return r;
-}
-
 /// Rank 0's sum h continued over every rank's values in rank order; on every rank.
 std::uint64_t fnv_along(MPI_Comm comm, std::uint64_t h, const std::vector<double>& mine) {
-  const int rank = rank_in(comm), ranks = ranks_of(comm);
+  const int rank = rank_of(comm), ranks = ranks_of(comm);
   unsigned long long v = h;
   if (rank > 0) MPI_Recv(&v, 1, MPI_UNSIGNED_LONG_LONG, rank - 1, kTagSum, comm, MPI_STATUS_IGNORE);
   std::uint64_t x = v;
@@ -49,29 +43,14 @@ std::uint64_t checksum_along(MPI_Comm comm, const Checkpoint& mine, unsigned lon
   return sum;
 }
 
-/// Rank 0's string on every rank.
-std::string from_root(MPI_Comm comm, const std::string& s) {
-  unsigned long long n = s.size();
-  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, comm);
-  std::string out = rank_in(comm) == 0 ? s : std::string(n, '\0');
-  if (n > 0) MPI_Bcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, comm);
-  return out;
-}
-
-bool any_rank(MPI_Comm comm, bool mine) {
-  int m = mine ? 1 : 0, any = 0;
-  MPI_Allreduce(&m, &any, 1, MPI_INT, MPI_MAX, comm);
-  return any != 0;
-}
-
 }  // namespace
 
 void write_checkpoint_collectively(MPI_Comm comm, const Directory& dir, const std::string& name,
                                    const Checkpoint& mine, unsigned long long values) {
   if (ranks_of(comm) == 1) return write_checkpoint(dir, name, mine);
-  const int rank = rank_in(comm);
+  const int rank = rank_of(comm);
   const Block b = block_of(static_cast<long long>(values), rank, ranks_of(comm));
-  const bool increment = any_rank(comm, !mine.last_increment.empty());
+  const bool increment = !all_ok(comm, mine.last_increment.empty());  // on any rank
   std::string error;
   for (const auto* v : {&mine.u, &mine.V, &mine.last_increment})
     if (v->size() != static_cast<std::size_t>(b.count) && !(v->empty() && !increment))
@@ -80,7 +59,7 @@ void write_checkpoint_collectively(MPI_Comm comm, const Directory& dir, const st
   error = first_error(comm, error);
   if (!error.empty()) throw Error(error);
   const std::uint64_t sum = checksum_along(comm, mine, values, increment);
-  const std::string model = from_root(comm, mine.model);
+  const std::string model = broadcast(comm, mine.model);
   const auto scalars = mine.scalars();
   const auto on_root = [&](const char* set, const std::vector<double>& v) {
     unsigned long long n = v.size();
@@ -113,7 +92,7 @@ void write_checkpoint_collectively(MPI_Comm comm, const Directory& dir, const st
 
 Checkpoint read_checkpoint_collectively(MPI_Comm comm, const std::string& path,
                                         const CheckpointShape& shape) {
-  const int ranks = ranks_of(comm), rank = ranks == 1 ? 0 : rank_in(comm);
+  const int ranks = ranks_of(comm), rank = rank_of(comm);
   const Block b = block_of(static_cast<long long>(shape.values), rank, ranks);
   Checkpoint c;
   std::uint64_t stored = 0;

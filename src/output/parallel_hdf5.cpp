@@ -17,28 +17,6 @@ namespace {
 using detail::Handle;
 using detail::hdf5_error_text;
 
-int rank_of(MPI_Comm comm) {
-  int r = 0;
-  if (comm != MPI_COMM_SELF) MPI_Comm_rank(comm, &r);
-  return r;
-}
-
-/// True on every rank when `ok` on every rank (collective).
-bool all_ok(MPI_Comm comm, bool ok) {
-  int mine = ok ? 1 : 0, all = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, comm);
-  return all == 1;
-}
-
-/// `root`'s string on every rank (collective).
-std::string broadcast(MPI_Comm comm, const std::string& s, int root = 0) {
-  long long n = static_cast<long long>(s.size());
-  MPI_Bcast(&n, 1, MPI_LONG_LONG, root, comm);
-  std::string out = rank_of(comm) == root ? s : std::string(static_cast<std::size_t>(n), '\0');
-  if (n > 0) MPI_Bcast(out.data(), static_cast<int>(n), MPI_CHAR, root, comm);
-  return out;
-}
-
 /// The memory dataspace of this rank's rows of `d` (a scalar's, or one row when it has none).
 hid_t memory_space(const SlabDataset& d) {
   if (d.width == 0) return H5Screate(H5S_SCALAR);
@@ -120,6 +98,26 @@ bool write_sets(MPI_Comm comm, const std::string& via, const std::vector<SlabDat
 }
 
 }  // namespace
+
+int rank_of(MPI_Comm comm) {
+  int r = 0;
+  if (comm != MPI_COMM_SELF) MPI_Comm_rank(comm, &r);
+  return r;
+}
+
+bool all_ok(MPI_Comm comm, bool ok) {
+  int mine = ok ? 1 : 0, all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, comm);
+  return all == 1;
+}
+
+std::string broadcast(MPI_Comm comm, const std::string& s, int root) {
+  long long n = static_cast<long long>(s.size());
+  MPI_Bcast(&n, 1, MPI_LONG_LONG, root, comm);
+  std::string out = rank_of(comm) == root ? s : std::string(static_cast<std::size_t>(n), '\0');
+  if (n > 0) MPI_Bcast(out.data(), static_cast<int>(n), MPI_CHAR, root, comm);
+  return out;
+}
 
 std::string first_error(MPI_Comm comm, const std::string& error) {
   int mine = error.empty() ? INT_MAX : rank_of(comm), first = INT_MAX;

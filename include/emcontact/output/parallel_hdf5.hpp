@@ -31,6 +31,13 @@ struct Block {
 };
 Block block_of(long long n, int rank, int ranks);
 
+/// This rank of `comm`; 0 for MPI_COMM_SELF without asking MPI.
+int rank_of(MPI_Comm comm);
+/// True on every rank when `ok` on every rank (collective).
+bool all_ok(MPI_Comm comm, bool ok);
+/// `root`'s string on every rank (collective).
+std::string broadcast(MPI_Comm comm, const std::string& s, int root = 0);
+
 /// The number of ranks of `comm`; 1 for MPI_COMM_SELF without asking MPI (a serial program that
 /// never starts MPI writes its files with MPI_COMM_SELF).
 int ranks_of(MPI_Comm comm);

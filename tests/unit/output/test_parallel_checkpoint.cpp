@@ -15,15 +15,11 @@
 #include "emcontact/output/checkpoint.hpp"
 #include "emcontact/output/parallel_hdf5.hpp"
 #include "temp_dir.hpp"
-#include "world.hpp"
 
 namespace emc::output {
 namespace {
 
-using testing::from_rank0;
 using testing::TempDir;
-using testing::world_rank;
-using testing::world_size;
 
 /// A whole checkpoint of `values` per-node values (distinct, not round numbers).
 Checkpoint whole(std::size_t values, bool increment) {
@@ -49,12 +45,13 @@ Checkpoint whole(std::size_t values, bool increment) {
 
 /// This rank's part: its block of the per-node values, the rest only on rank 0.
 Checkpoint mine(const Checkpoint& c, std::size_t values) {
-  const Block b = block_of(static_cast<long long>(values), world_rank(), world_size());
+  const Block b =
+      block_of(static_cast<long long>(values), rank_of(MPI_COMM_WORLD), ranks_of(MPI_COMM_WORLD));
   const auto cut = [&](const std::vector<double>& v) {
     return v.empty() ? v : std::vector<double>(v.begin() + b.first, v.begin() + b.first + b.count);
   };
   Checkpoint m;
-  if (world_rank() == 0) m = c;
+  if (rank_of(MPI_COMM_WORLD) == 0) m = c;
   m.u = cut(c.u);
   m.V = cut(c.V);
   m.last_increment = cut(c.last_increment);
@@ -84,15 +81,15 @@ std::uint64_t stored_checksum(const std::string& path) {
 }
 
 void expect_same_as_one_rank(std::size_t values, bool increment) {
-  TempDir* tmp = world_rank() == 0 ? new TempDir : nullptr;
-  const std::string base = from_rank0(tmp ? tmp->path() : std::string());
+  TempDir* tmp = rank_of(MPI_COMM_WORLD) == 0 ? new TempDir : nullptr;
+  const std::string base = broadcast(MPI_COMM_WORLD, tmp ? tmp->path() : std::string());
   const Checkpoint c = whole(values, increment);
   {
-    const Directory root_dir = world_rank() == 0 ? Directory(base) : Directory();
+    const Directory root_dir = rank_of(MPI_COMM_WORLD) == 0 ? Directory(base) : Directory();
     const Directory dir = shared_directory(MPI_COMM_WORLD, root_dir);
     write_checkpoint_collectively(MPI_COMM_WORLD, dir, "par.h5", mine(c, values), values);
   }
-  if (world_rank() == 0) {
+  if (rank_of(MPI_COMM_WORLD) == 0) {
     write_checkpoint(base + "/ser.h5", c);
     for (const char* set :
          {"scalars", "u", "V", "last_increment", "active", "normal_force", "state"})
@@ -128,16 +125,16 @@ TEST(ParallelCheckpoint, WithoutLastIncrement) {
 
 // the last value of u changed in the file: every rank refuses it with the same message
 TEST(ParallelCheckpoint, AFlippedValueIsRefusedOnEveryRank) {
-  TempDir* tmp = world_rank() == 0 ? new TempDir : nullptr;
-  const std::string base = from_rank0(tmp ? tmp->path() : std::string());
+  TempDir* tmp = rank_of(MPI_COMM_WORLD) == 0 ? new TempDir : nullptr;
+  const std::string base = broadcast(MPI_COMM_WORLD, tmp ? tmp->path() : std::string());
   const std::size_t values = 45;
   const Checkpoint c = whole(values, true);
   {
-    const Directory root_dir = world_rank() == 0 ? Directory(base) : Directory();
+    const Directory root_dir = rank_of(MPI_COMM_WORLD) == 0 ? Directory(base) : Directory();
     write_checkpoint_collectively(MPI_COMM_WORLD, shared_directory(MPI_COMM_WORLD, root_dir),
                                   "c.h5", mine(c, values), values);
   }
-  if (world_rank() == 0) {
+  if (rank_of(MPI_COMM_WORLD) == 0) {
     const hid_t file = H5Fopen((base + "/c.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     const hid_t set = H5Dopen2(file, "u", H5P_DEFAULT);
     std::vector<double> u = c.u;

@@ -15,17 +15,14 @@
 #include "emcontact/output/parallel_hdf5.hpp"
 #include "fake_mesh.hpp"
 #include "temp_dir.hpp"
-#include "world.hpp"
 
 namespace emc::output {
 namespace {
 
 using testing::FakeMesh;
-using testing::from_rank0;
 using testing::make_fake_frame;
 using testing::make_fake_mesh;
 using testing::TempDir;
-using testing::world_rank;
 
 /// The rows [first, first + count) of `v`, `width` values each (none of an empty field).
 template <class T>
@@ -93,23 +90,23 @@ Raw read_raw(const std::string& path, const char* name) {
 /// Writes mesh.h5 and frames 0 and 5 of `m` on every rank into `par` (each rank its rows) and
 /// on rank 0 alone into `ser`; rank 0 compares every dataset of the two.
 void expect_same_files(const FakeMesh& m) {
-  TempDir* dir = world_rank() == 0 ? new TempDir : nullptr;
-  const std::string base = from_rank0(dir ? dir->path() : std::string());
+  TempDir* dir = rank_of(MPI_COMM_WORLD) == 0 ? new TempDir : nullptr;
+  const std::string base = broadcast(MPI_COMM_WORLD, dir ? dir->path() : std::string());
   const std::string par = base + "/par", ser = base + "/ser";
-  if (world_rank() == 0) {
+  if (rank_of(MPI_COMM_WORLD) == 0) {
     ASSERT_EQ(::mkdir(par.c_str(), 0755), 0);
     ASSERT_EQ(::mkdir(ser.c_str(), 0755), 0);
   }
   MPI_Barrier(MPI_COMM_WORLD);
   const auto l = FieldLayout::blocks(MPI_COMM_WORLD, m.num_nodes(), m.num_tets());
   {
-    const Directory root_dir = world_rank() == 0 ? Directory(par) : Directory();
+    const Directory root_dir = rank_of(MPI_COMM_WORLD) == 0 ? Directory(par) : Directory();
     FieldWriter w(
         shared_directory(MPI_COMM_WORLD, root_dir), l, rows(m.X, l.node_first, l.node_count, 3),
         rows(m.tets, l.tet_first, l.tet_count, 4), rows(m.body, l.tet_first, l.tet_count, 1));
     for (long step : {0L, 5L}) w.write(my_rows(frame(m, step), l));
   }
-  if (world_rank() == 0) {
+  if (rank_of(MPI_COMM_WORLD) == 0) {
     FieldWriter w(ser, m.X, m.tets, m.body);
     for (long step : {0L, 5L}) w.write(frame(m, step));
     for (const char* set : {"/geometry", "/topology", "/body"})
@@ -137,23 +134,23 @@ TEST(ParallelFields, RanksWithoutRowsTakePart) {
 }
 
 TEST(ParallelFields, AFailedWriteStopsEveryRankNamingTheFile) {
-  TempDir* dir = world_rank() == 0 ? new TempDir : nullptr;
-  const std::string out = from_rank0(dir ? (*dir / "out") : std::string());
-  if (world_rank() == 0) ASSERT_EQ(::mkdir(out.c_str(), 0755), 0);
+  TempDir* dir = rank_of(MPI_COMM_WORLD) == 0 ? new TempDir : nullptr;
+  const std::string out = broadcast(MPI_COMM_WORLD, dir ? (*dir / "out") : std::string());
+  if (rank_of(MPI_COMM_WORLD) == 0) ASSERT_EQ(::mkdir(out.c_str(), 0755), 0);
   MPI_Barrier(MPI_COMM_WORLD);
   const FakeMesh m = make_fake_mesh(2);
   const auto l = FieldLayout::blocks(MPI_COMM_WORLD, m.num_nodes(), m.num_tets());
-  const Directory root_dir = world_rank() == 0 ? Directory(out) : Directory();
+  const Directory root_dir = rank_of(MPI_COMM_WORLD) == 0 ? Directory(out) : Directory();
   FieldWriter w(shared_directory(MPI_COMM_WORLD, root_dir), l,
                 rows(m.X, l.node_first, l.node_count, 3), rows(m.tets, l.tet_first, l.tet_count, 4),
                 rows(m.body, l.tet_first, l.tet_count, 1));
   // the directory removed under the run: rank 0 cannot create the frame's temporary
   MPI_Barrier(MPI_COMM_WORLD);
-  if (world_rank() == 0) std::filesystem::remove_all(out);
+  if (rank_of(MPI_COMM_WORLD) == 0) std::filesystem::remove_all(out);
   MPI_Barrier(MPI_COMM_WORLD);
   try {
     w.write(my_rows(frame(m, 1), l));
-    ADD_FAILURE() << "no error on rank " << world_rank();
+    ADD_FAILURE() << "no error on rank " << rank_of(MPI_COMM_WORLD);
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("fields_00000001.h5"), std::string::npos) << e.what();
   }
@@ -162,12 +159,13 @@ TEST(ParallelFields, AFailedWriteStopsEveryRankNamingTheFile) {
 }
 
 TEST(ParallelFields, AnotherDirectoryAtTheNameIsRefused) {
-  TempDir* dir = world_rank() == 0 ? new TempDir : nullptr;
-  const std::string out = from_rank0(dir ? (*dir / "out") : std::string());
-  if (world_rank() == 0) ASSERT_EQ(::mkdir(out.c_str(), 0755), 0);
+  TempDir* dir = rank_of(MPI_COMM_WORLD) == 0 ? new TempDir : nullptr;
+  const std::string out = broadcast(MPI_COMM_WORLD, dir ? (*dir / "out") : std::string());
+  if (rank_of(MPI_COMM_WORLD) == 0) ASSERT_EQ(::mkdir(out.c_str(), 0755), 0);
   MPI_Barrier(MPI_COMM_WORLD);
-  const Directory root_dir = world_rank() == 0 ? Directory(out) : Directory();
-  if (world_rank() == 0) {  // renamed after rank 0 opened it, another one made at its name
+  const Directory root_dir = rank_of(MPI_COMM_WORLD) == 0 ? Directory(out) : Directory();
+  if (rank_of(MPI_COMM_WORLD) ==
+      0) {  // renamed after rank 0 opened it, another one made at its name
     ASSERT_EQ(::rename(out.c_str(), (out + ".moved").c_str()), 0);
     ASSERT_EQ(::mkdir(out.c_str(), 0755), 0);
   }
