@@ -15,11 +15,6 @@
 namespace emc::app {
 namespace {
 
-template <class T>
-void hash_into(std::uint64_t& h, const std::vector<T>& v) {
-  fem::fnv_into(h, v);
-}
-
 std::string hex(std::uint64_t h) {
   char buf[20];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
@@ -187,8 +182,8 @@ std::string model_fingerprint(const Simulation& sim) {
        << b.tet_end - b.tet_begin << ", rigid " << b.rigid << ", young " << b.young << ", poisson "
        << b.poisson << ", density " << b.density << "\n";
   std::uint64_t h = m.mesh_fnv;  // X and the tets, hashed where they were all held (rank 0)
-  hash_into(h, m.rigid_X);
-  hash_into(h, m.fixed);
+  fem::fnv_into(h, m.rigid_X);
+  fem::fnv_into(h, m.fixed);
   if (sim.contact) {
     os << "pairs: " << sim.contact->pairs().size() << "\n";
     for (const auto& p : sim.contact->pairs()) {
@@ -198,8 +193,8 @@ std::string model_fingerprint(const Simulation& sim) {
                                                    : "full stick")
          << ", slaves " << p.slaves.size() << ", facets " << p.facets.size() << ", master body "
          << p.master_body << "\n";
-      hash_into(h, p.slaves);
-      hash_into(h, p.facets);
+      fem::fnv_into(h, p.slaves);
+      fem::fnv_into(h, p.facets);
     }
   }
   os << "geometry hash: " << hex(h) << "\n";

@@ -131,6 +131,17 @@ std::vector<int> node_owners(const Model& m, const std::vector<int>& part, int r
   return owner;
 }
 
+/// The nodes of p.my_tets (tets of m) into p.owned_nodes and p.shared_nodes by p.node_owner.
+void split_nodes(const Model& m, Partition& p, int rank) {
+  std::vector<int> used;
+  used.reserve(4 * p.my_tets.size());
+  for (int t : p.my_tets)
+    for (int a = 0; a < 4; ++a) used.push_back(m.tets[4 * std::size_t(t) + a]);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  for (int n : used) (p.node_owner[n] == rank ? p.owned_nodes : p.shared_nodes).push_back(n);
+}
+
 /// The partition for the part of every tet: my tets along the curve, the owners of node_owners.
 Partition assemble(const Model& m, const std::vector<int>& part_of_tet,
                    const std::vector<std::uint64_t>& key, int rank, int ranks) {
@@ -139,13 +150,7 @@ Partition assemble(const Model& m, const std::vector<int>& part_of_tet,
   for (int e = 0; e < m.num_tets(); ++e)
     if (part_of_tet[e] == rank) p.my_tets.push_back(e);
   sort_along_curve(p.my_tets, key);
-  std::vector<int> used;
-  used.reserve(4 * p.my_tets.size());
-  for (int t : p.my_tets)
-    for (int a = 0; a < 4; ++a) used.push_back(m.tets[4 * t + a]);
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  for (int n : used) (p.node_owner[n] == rank ? p.owned_nodes : p.shared_nodes).push_back(n);
+  split_nodes(m, p, rank);
   return p;
 }
 
@@ -313,10 +318,7 @@ Partition part_of_held(const Model& m, std::vector<int> node_owner, int rank) {
   p.my_tets.resize(m.owned_tets);
   std::iota(p.my_tets.begin(), p.my_tets.end(), 0);
   sort_along_curve(p.my_tets, morton_keys(m));
-  std::vector<int> used(m.tets.begin(), m.tets.begin() + 4 * std::size_t(m.owned_tets));
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  for (int n : used) (p.node_owner[n] == rank ? p.owned_nodes : p.shared_nodes).push_back(n);
+  split_nodes(m, p, rank);
   return p;
 }
 
