@@ -288,7 +288,7 @@ hostile_failed_allocation_one_line() {
   expect_short_err 1
 }
 
-# the tet limit is over all bodies: two boxes of about 1.24e7 tets each (each below the limit,
+# the tet limit is over all bodies: two boxes of about 1.17e8 tets each (each below the limit,
 # so each was meshed)
 hostile_tet_limit_over_all_bodies() {
   cat >in.xml <<'EOF'
@@ -300,13 +300,13 @@ hostile_tet_limit_over_all_bodies() {
   <ParameterList name="Bodies">
     <ParameterList name="a">
       <ParameterList name="Mesh">
-        <Parameter name="size" type="double" value="0.0019"/>
+        <Parameter name="size" type="double" value="0.0009"/>
         <Parameter name="upper corner" type="Array(double)" value="{0.1, 0.1, 1}"/>
       </ParameterList>
     </ParameterList>
     <ParameterList name="b">
       <ParameterList name="Mesh">
-        <Parameter name="size" type="double" value="0.0019"/>
+        <Parameter name="size" type="double" value="0.0009"/>
         <Parameter name="lower corner" type="Array(double)" value="{0, 0, 2}"/>
         <Parameter name="upper corner" type="Array(double)" value="{0.1, 0.1, 3}"/>
       </ParameterList>
@@ -315,7 +315,7 @@ hostile_tet_limit_over_all_bodies() {
 </ParameterList>
 EOF
   expect_exit_within 60 1 "$EMC" in.xml --output out
-  expect_err 'in.xml: Bodies: the meshes would hold about 24784954 tetrahedra in all \(a: 12392477, b: 12392477\), more than the limit of 20000000 tetrahedra in all the bodies together'
+  expect_err 'in.xml: Bodies: the meshes would hold about 233196159 tetrahedra in all \(a: 116598080, b: 116598080\), more than the limit of 200000000 tetrahedra in all the bodies together'
   expect_short_err 1
 }
 

@@ -26,8 +26,11 @@ std::vector<std::string> types_reading(const std::string& parameter);
 bool is_rigid_surface_type(MeshType type);
 
 /// At most this many tetrahedra in all the bodies of a run together (generated meshes and
-/// files): beyond it, one rank's share of the matrices outgrows any machine this runs on.
-constexpr double kMaxTets = 2e7;
+/// files). Rank 0 builds or reads the whole mesh and holds it, in 32-bit node ids and 32-bit
+/// tet indices, until it has handed out the parts; 4 ids per tet and 3 dofs per node (about a
+/// fifth of the tets) then stay well below 2^31. What each rank needs beyond that, including
+/// rank 0's mesher, is checked against its memory (app::check_memory).
+constexpr double kMaxTets = 2e8;
 
 /// About the number of tetrahedra build_mesh makes of a generated volume (type box, cylinder,
 /// hollow cylinder, spherical shell: 8.5 V / size^3, regular tets of edge `size`), after
