@@ -73,8 +73,7 @@ void check_scalars(const output::Checkpoint& c, const std::string& path) {
 void check_arrays(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
   const auto& comm = *sim.disc->comm();  // this rank's block of the per-node values
   const auto n = static_cast<std::size_t>(
-      output::block_of(static_cast<long long>(sim.model.X.size()), comm.getRank(), comm.getSize())
-          .count);
+      output::block_of(3LL * sim.model.num_nodes(), comm.getRank(), comm.getSize()).count);
   auto sized = [&](const std::vector<double>& v, const char* name, bool may_be_empty) {
     if (v.size() != n && !(may_be_empty && v.empty()))
       refuse(path, std::string("the checkpoint's ") + name + " has " + std::to_string(v.size()) +
@@ -181,9 +180,7 @@ std::string model_fingerprint(const Simulation& sim) {
     os << "body " << b.name << ": nodes " << b.node_end - b.node_begin << ", tets "
        << b.tet_end - b.tet_begin << ", rigid " << b.rigid << ", young " << b.young << ", poisson "
        << b.poisson << ", density " << b.density << "\n";
-  std::uint64_t h = m.mesh_fnv;  // X and the tets, hashed where they were all held (rank 0)
-  fem::fnv_into(h, m.rigid_X);
-  fem::fnv_into(h, m.fixed);
+  std::uint64_t h = m.mesh_fnv;  // X, the tets, rigid_X, fixed: hashed where all were held
   if (sim.contact) {
     os << "pairs: " << sim.contact->pairs().size() << "\n";
     for (const auto& p : sim.contact->pairs()) {

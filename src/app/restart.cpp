@@ -85,7 +85,7 @@ void scatter_active(const output::Checkpoint& c, Simulation& sim) {
   constexpr std::size_t n = contact::kPackedActive;
   for (std::size_t k = 0; k + n <= c.active.size(); k += n) {
     contact::Active a = contact::unpack(&c.active[k]);
-    if (sim.disc->part().node_owner.at(a.slave) != rank) continue;
+    if (sim.disc->part().owner(sim.model, a.slave) != rank) continue;
     const std::size_t entry = k / n;
     if (!c.state.empty()) contact::unpack_state(&c.state.at(entry * contact::kPackedState), a);
     s.active.push_back(a);
@@ -99,7 +99,7 @@ output::CheckpointShape checkpoint_shape(const Simulation& sim, const std::strin
   static_assert(output::kActiveValues == contact::kPackedActive);
   static_assert(output::kStateValues == contact::kPackedState);
   output::CheckpointShape shape;
-  shape.values = sim.model.X.size();
+  shape.values = 3 * static_cast<std::size_t>(sim.model.num_nodes());
   if (sim.contact)
     for (const auto& p : sim.contact->pairs()) shape.max_entries += p.slaves.size();
   shape.check_model = [&sim, path](const std::string& model) { check_model(model, sim, path); };
@@ -139,7 +139,7 @@ void save_checkpoint(const Simulation& sim, const RootGather& dofs, const output
   if (has) c.last_increment = dofs(*s.last_increment);
   gather_active(sim, c);
   output::write_checkpoint_collectively(raw_comm(*sim.disc->comm()), dir, name, c,
-                                        sim.model.X.size());
+                                        3 * static_cast<std::size_t>(sim.model.num_nodes()));
 }
 
 RestartInput read_restart(const Simulation& sim, const std::string& path) {

@@ -46,20 +46,20 @@ namespace {
 std::vector<GO> owned_fixed_dofs(const fem::Discretization& disc) {
   std::vector<GO> fixed;
   for (int n : disc.part().owned_nodes)
-    if (disc.model().fixed[n])
+    if (disc.model().is_fixed(n))
       for (int c = 0; c < 3; ++c) fixed.push_back(fem::dof_gid(n, c));
   return fixed;
 }
 
 /// Initial velocity restricted to the owned dofs; zero on fixed nodes.
 RCP<Vector> initial_velocity(const fem::Discretization& disc) {
-  const auto V = fem::initial_velocity(disc.model());
   auto out = rcp(new Vector(disc.owned_map()));
   auto h = out->getLocalViewHost(Tpetra::Access::OverwriteAll);
   const auto& map = *disc.owned_map();
   for (std::size_t l = 0; l < map.getNodeNumElements(); ++l) {
     const GO g = map.getGlobalElement(static_cast<LO>(l));
-    h(l, 0) = disc.model().fixed[g / 3] ? 0.0 : V[g];
+    const int n = static_cast<int>(g / 3);
+    h(l, 0) = disc.model().is_fixed(n) ? 0.0 : fem::initial_velocity(disc.model(), n)[g % 3];
   }
   return out;
 }
@@ -140,11 +140,9 @@ void make_field_writer(const fem::Discretization& disc, const OutputDirectory& d
   w.node_rows = std::make_unique<RootGather>(disc.owned_map(), fem::dof_gid(layout.node_first, 0),
                                              3 * layout.node_count);
   w.tet_rows = std::make_unique<RootGather>(disc.element_map(), layout.tet_first, layout.tet_count);
-  // this rank's rows: the nodes' coordinates (on every rank), the tets (4 nodes and the body
-  // of each) from the ranks that own them
-  const auto n0 = static_cast<std::size_t>(layout.node_first);
-  const auto nn = static_cast<std::size_t>(layout.node_count);
-  const std::vector<double> X(model.X.begin() + 3 * n0, model.X.begin() + 3 * (n0 + nn));
+  // this rank's rows: the nodes' coordinates and the tets (4 nodes and the body of each), from
+  // the ranks that own them
+  const std::vector<double> X = (*w.node_rows)(*disc.reference_positions());
   std::vector<long long> tets(4 * static_cast<std::size_t>(layout.tet_count));
   std::vector<int> body(static_cast<std::size_t>(layout.tet_count));
   const auto& mine = disc.part().my_tets;

@@ -50,7 +50,7 @@ double min_penetration(const Box& master, double edge) {
 
 /// Coordinates of contact geometry node `n` (deformable: global node, rigid: num_nodes + k).
 const double* geometry_node(const fem::Model& m, int n) {
-  return n < m.num_nodes() ? &m.X[3 * n] : &m.rigid_X[3 * (n - m.num_nodes())];
+  return n < m.num_nodes() ? m.x(n) : &m.rigid_X[3 * (n - m.num_nodes())];
 }
 
 /// The hints noted by note_parameter_scales.
@@ -152,7 +152,7 @@ void check_contact_scales(const fem::Model& model, const std::vector<contact::Pa
                        number(min_penetration(master, p.edge)) +
                        "): no penetration could be told from touching; " + allowed);
   }
-  Box deformable;
+  Box deformable;  // over the held nodes: they hold every body's boundary, so its extremes
   for (std::size_t i = 0; i + 2 < model.X.size(); i += 3) deformable.add(&model.X[i]);
   const double size = deformable.diagonal();
   for (const auto& b : model.bodies) {

@@ -35,7 +35,7 @@ ClosureWork Contact::closure_work(const Vector& g, Positions x0, Positions x1,
     for (int c = 0; c < 3; ++c) {
       send.insert(send.end(), {double(fem::dof_gid(closed[k].slave, c)), wh(k, c)});
       for (int i = 0; i < 3; ++i)
-        if (f[i] < m.num_nodes() && !m.fixed[f[i]])
+        if (f[i] < m.num_nodes() && !m.is_fixed(f[i]))
           send.insert(send.end(), {double(fem::dof_gid(f[i], c)), -Nh(k, i) * wh(k, c)});
     }
   }

@@ -30,11 +30,12 @@ Contact::Contact(const fem::Discretization& disc, std::vector<Pair> pairs)
   // frictionless slaves on it are projected, §7.2)
   std::sort(distinct_laws_.begin(), distinct_laws_.end(),
             [](const Law* a, const Law* b) { return a->kind() < b->kind(); });
-  master_node_.assign(disc.model().num_nodes(), 0);
   for (const auto& p : pairs_)
     for (const auto& f : p.facets)
       for (int n : f)
-        if (n < disc.model().num_nodes()) master_node_[n] = 1;
+        if (n < disc.model().num_nodes()) master_nodes_.push_back(n);
+  std::sort(master_nodes_.begin(), master_nodes_.end());
+  master_nodes_.erase(std::unique(master_nodes_.begin(), master_nodes_.end()), master_nodes_.end());
 }
 
 Contact::~Contact() = default;
@@ -158,7 +159,7 @@ void Contact::expand_node(int node, int c, double w, const ActiveIndex& index,
                           const Positions::HostMirror& xh, std::vector<int>& path,
                           linalg::PRow& r) const {
   const auto& m = disc_.model();
-  if (node >= m.num_nodes() || m.fixed[node]) return;  // rigid or fixed: no column
+  if (node >= m.num_nodes() || m.is_fixed(node)) return;  // rigid or fixed: no column
   auto it = index.by_slave.find(node);
   const bool on_path = std::find(path.begin(), path.end(), node) != path.end();
   if (it == index.by_slave.end() || on_path) {

@@ -76,7 +76,7 @@ void stick_start(const LawState& s, Kind own, const std::vector<Active>& active,
   const auto& m = contact.disc_model();
   std::vector<Active> entries;
   for (const auto& a : active)
-    if (sticking(contact.pairs()[a.pair], a, own) && !m.fixed[a.slave]) entries.push_back(a);
+    if (sticking(contact.pairs()[a.pair], a, own) && !m.is_fixed(a.slave)) entries.push_back(a);
   if (contact.global_count(static_cast<int>(entries.size())) == 0) return;
   const Refs refs = contact.refs(entries);
   Values3 d("emc::stick_corrections", entries.size());

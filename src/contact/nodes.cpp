@@ -110,7 +110,7 @@ ContactNodes::ContactNodes(const fem::Discretization& disc, const std::vector<Pa
   for (const auto& p : pairs_) {
     my_slaves_.emplace_back();
     for (int s : p.slaves)
-      if (disc_.part().node_owner[s] == rank) my_slaves_.back().push_back(s);
+      if (disc_.part().owner(disc_.model(), s) == rank) my_slaves_.back().push_back(s);
     slave_box_data(my_slaves_.back());
     for (int s : my_slaves_.back()) {  // the slave and its slave-surface neighbours (its normal)
       slave_side_.push_back(s);
@@ -170,7 +170,7 @@ void ContactNodes::slave_box_data(const std::vector<int>& mine) {
   auto dh = Kokkos::create_mirror_view(dof);
   for (std::size_t k = 0; k < mine.size(); ++k)
     for (int c = 0; c < 3; ++c) {
-      Xh(k, c) = m.X[3 * mine[k] + c];
+      Xh(k, c) = m.x(mine[k])[c];
       dh(k, c) = map.getLocalElement(fem::dof_gid(mine[k], c));
     }
   Kokkos::deep_copy(X, Xh);
@@ -255,7 +255,7 @@ std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Sweep& from,
         for (const auto* v : {&v0, &v1}) {
           double x[3];
           for (int c = 0; c < 3; ++c)
-            x[c] = m.X[3 * a + c] + (*v)(overlap.getLocalElement(fem::dof_gid(a, c)), 0);
+            x[c] = m.x(a)[c] + (*v)(overlap.getLocalElement(fem::dof_gid(a, c)), 0);
           grow(box, x);
         }
       for (int r = 0; r < nr; ++r)
@@ -359,7 +359,7 @@ void ContactNodes::build(const std::vector<std::vector<int>>& need) {
         Xh(l, c) = m.rigid_X[3 * (gid_[l] - m.num_nodes()) + c];
         continue;
       }
-      Xh(l, c) = m.X[3 * gid_[l] + c];
+      Xh(l, c) = m.x(gid_[l])[c];
       const GO dof = fem::dof_gid(gid_[l], c);
       sh(l, c) = owned.getLocalElement(dof);
       if (sh(l, c) != Tpetra::Details::OrdinalTraits<LO>::invalid()) continue;

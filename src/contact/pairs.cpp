@@ -120,9 +120,13 @@ void slave_normal(const Pair& p, int s, const std::vector<double>& x, double n[3
 }
 
 std::vector<double> positions(const fem::Model& model, const std::vector<double>& u) {
-  std::vector<double> x(model.X.size() + model.rigid_X.size());
-  for (std::size_t k = 0; k < model.X.size(); ++k) x[k] = model.X[k] + (u.empty() ? 0.0 : u[k]);
-  std::copy(model.rigid_X.begin(), model.rigid_X.end(), x.begin() + model.X.size());
+  const std::size_t deformable = 3 * static_cast<std::size_t>(model.num_nodes());
+  std::vector<double> x(deformable + model.rigid_X.size(), 0.0);
+  for (int l = 0; l < model.held_nodes(); ++l) {
+    const std::size_t k = 3 * static_cast<std::size_t>(model.node_id(l));
+    for (int c = 0; c < 3; ++c) x[k + c] = model.X[3 * l + c] + (u.empty() ? 0.0 : u[k + c]);
+  }
+  std::copy(model.rigid_X.begin(), model.rigid_X.end(), x.begin() + deformable);
   return x;
 }
 
@@ -191,6 +195,7 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
 
 void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model,
                           const std::string& file) {
+  if (!model.holds_all_nodes()) throw Error("internal: mark_massless_slaves after distribute");
   for (const auto& p : pairs) {
     if (!p.massless_slave) continue;
     model.massless.resize(model.num_nodes(), 0);

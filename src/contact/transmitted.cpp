@@ -42,7 +42,7 @@ std::map<int, std::array<double, 3>> Contact::active_residuals(const Vector& g,
   auto gv = g.getLocalViewHost(Tpetra::Access::ReadOnly);
   std::vector<double> send;
   for (const auto& [s, a] : index.by_slave)
-    if (disc_.part().node_owner[s] == rank) {
+    if (disc_.part().owner(disc_.model(), s) == rank) {
       send.push_back(s);
       for (int c = 0; c < 3; ++c) send.push_back(gv(map.getLocalElement(fem::dof_gid(s, c)), 0));
     }

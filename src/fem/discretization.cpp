@@ -48,8 +48,10 @@ void Discretization::build_maps() {
 Teuchos::RCP<Vector> Discretization::reference_positions() const {
   auto X = rcp(new Vector(owned_));
   auto x = X->getLocalViewHost(Tpetra::Access::OverwriteAll);
-  for (size_t i = 0; i < x.extent(0); ++i)
-    x(i, 0) = model_.X[owned_->getGlobalElement(static_cast<LO>(i))];
+  for (size_t i = 0; i < x.extent(0); ++i) {
+    const GO g = owned_->getGlobalElement(static_cast<LO>(i));
+    x(i, 0) = model_.x(static_cast<int>(g / 3))[g % 3];
+  }
   return X;
 }
 
@@ -79,7 +81,8 @@ void Discretization::build_element_data() {
     for (int a = 0; a < 4; ++a) {
       const int n = model_.tets[4 * e + a];
       lid(k, a) = overlap_->getLocalElement(dof_gid(n, 0)) / 3;
-      for (int i = 0; i < 3; ++i) x[a][i] = X(k, a, i) = model_.X[3 * n + i];
+      const double* Xn = model_.x(n);
+      for (int i = 0; i < 3; ++i) x[a][i] = X(k, a, i) = Xn[i];
     }
     Ve(k) = kernels::tet_gradients(x, g);
     if (!(Ve(k) > 0))

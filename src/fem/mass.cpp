@@ -106,13 +106,13 @@ double affine_fit(const Model& m, int c, const std::vector<int>& pts, std::vecto
   if (k < 4) return inf;
   double R = 0;
   for (int j : pts)
-    R = std::max(R, std::hypot(m.X[3 * j] - m.X[3 * c], m.X[3 * j + 1] - m.X[3 * c + 1],
-                               m.X[3 * j + 2] - m.X[3 * c + 2]));
+    R = std::max(R,
+                 std::hypot(m.x(j)[0] - m.x(c)[0], m.x(j)[1] - m.x(c)[1], m.x(j)[2] - m.x(c)[2]));
   std::vector<std::array<double, 4>> a(k);
   double G[4][4] = {};
   for (std::size_t j = 0; j < k; ++j) {
     a[j][0] = 1;
-    for (int i = 0; i < 3; ++i) a[j][i + 1] = (m.X[3 * pts[j] + i] - m.X[3 * c + i]) / R;
+    for (int i = 0; i < 3; ++i) a[j][i + 1] = (m.x(pts[j])[i] - m.x(c)[i]) / R;
     for (int p = 0; p < 4; ++p)
       for (int q = 0; q < 4; ++q) G[p][q] += a[j][p] * a[j][q];
   }
@@ -150,7 +150,7 @@ class Rings {
     std::merge(seen_.begin(), seen_.end(), fresh.begin(), fresh.end(), std::back_inserter(merged));
     seen_ = std::move(merged);
     for (int n : fresh)
-      if (!m_.massless[n]) massive.push_back(n);
+      if (!m_.is_massless(n)) massive.push_back(n);
     front_ = std::move(fresh);
     return massive;
   }
@@ -180,7 +180,7 @@ int fit_massless_nodes(Model& m) {
   std::vector<int> start, adj;
   adjacency(m, start, adj);
   for (int c = 0; c < m.num_nodes(); ++c) {
-    if (!m.massless[c]) continue;
+    if (!m.is_massless(c)) continue;
     Rings rings(m, start, adj, c);
     std::vector<int> pts, best_pts;
     std::vector<double> w, best_w;
@@ -243,7 +243,7 @@ void moved_element_mass(const Model& m, int e, std::vector<int>& nodes, std::vec
   }
   double x[4][3];
   for (int a = 0; a < 4; ++a)
-    for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
+    for (int i = 0; i < 3; ++i) x[a][i] = m.x(m.tets[4 * e + a])[i];
   M.assign(static_cast<std::size_t>(K) * K, 0.0);
   kernels::moved_mass(m.bodies[m.body_of_tet[e]].density, kernels::tet_volume(x), W.data(), K,
                       M.data());
@@ -263,7 +263,7 @@ std::vector<double> mass_row_sums(const Model& m) {
     }
     double x[4][3];
     for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
+      for (int i = 0; i < 3; ++i) x[a][i] = m.x(m.tets[4 * e + a])[i];
     const double quarter = 0.25 * m.bodies[m.body_of_tet[e]].density * kernels::tet_volume(x);
     for (int a = 0; a < 4; ++a) rows[m.tets[4 * e + a]] += quarter;
   }
@@ -287,7 +287,7 @@ void Discretization::build_moved_mass() {
     moved_element_mass(model_, e, nodes, M);
     const std::size_t K = nodes.size();
     for (std::size_t j = 0; j < K; ++j) {
-      if (part_.node_owner[nodes[j]] != me) continue;
+      if (part_.owner(model_, nodes[j]) != me) continue;
       auto& row = rows[nodes[j]];
       for (std::size_t k = 0; k < K; ++k) row[nodes[k]] += M[j * K + k];
     }
@@ -394,7 +394,7 @@ void Discretization::add_moved_monitors(const Vector& u, const Vector& V,
     const GO node = owned_->getGlobalElement(3 * k) / 3;
     double x[3], pk[3];
     for (int i = 0; i < 3; ++i) {
-      x[i] = model_.X[3 * node + i] + hu(3 * k + i, 0);
+      x[i] = model_.x(static_cast<int>(node))[i] + hu(3 * k + i, 0);
       pk[i] = hp(3 * k + i, 0);
       m.kinetic += 0.5 * hV(3 * k + i, 0) * pk[i];
       m.L[i] += pk[i];

@@ -102,12 +102,16 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
     m.owned_tets = m.num_tets();
     for (std::size_t b = 0; b < m.bodies.size(); ++b)
       if (!m.bodies[b].rigid) body_geometry(m, static_cast<int>(b));
-    m.mesh_fnv = fnv_basis;
-    fnv_into(m.mesh_fnv, m.X);
-    fnv_into(m.mesh_fnv, m.tets);
   }
   m.fixed.assign(m.num_nodes(), 0);
   apply_dirichlet(params, m, file);
+  if (held) {
+    m.mesh_fnv = fnv_basis;
+    fnv_into(m.mesh_fnv, m.X);
+    fnv_into(m.mesh_fnv, m.tets);
+    fnv_into(m.mesh_fnv, m.rigid_X);
+    fnv_into(m.mesh_fnv, m.fixed);
+  }
   if (params.isSublist("Loads"))
     m.gravity = vec3(params.sublist("Loads"), "gravity", file + ": Loads");
   m.integrator =
@@ -124,7 +128,7 @@ int massless_mask(const Model& m, int e) {
   int mask = 0;
   if (m.massless.empty()) return mask;
   for (int a = 0; a < 4; ++a)
-    if (m.massless[m.tets[4 * e + a]]) mask |= 1 << a;
+    if (m.is_massless(m.tets[4 * e + a])) mask |= 1 << a;
   return mask;
 }
 
@@ -138,7 +142,7 @@ void body_geometry(Model& m, int b) {
   for (int e = body.tet_begin; e < body.tet_end; ++e) {
     double x[4][3];
     for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) x[a][i] = m.X[3 * m.tets[4 * e + a] + i];
+      for (int i = 0; i < 3; ++i) x[a][i] = m.x(m.tets[4 * e + a])[i];
     const double v = kernels::tet_volume(x);
     vol += v;
     for (int i = 0; i < 3; ++i) c[i] += v * 0.25 * (x[0][i] + x[1][i] + x[2][i] + x[3][i]);
@@ -166,22 +170,57 @@ void body_geometry(Model& m, int b) {
         body.radius, std::hypot(m.X[3 * n] - g[0], m.X[3 * n + 1] - g[1], m.X[3 * n + 2] - g[2]));
 }
 
-std::vector<double> initial_velocity(const Model& m) {
-  std::vector<double> V(m.X.size(), 0.0);
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    const Body& body = m.bodies[b];
-    if (body.rigid) continue;
-    const auto c = centre_of_mass(m, static_cast<int>(b));
+std::array<double, 3> initial_velocity(const Model& m, int n) {
+  for (const Body& body : m.bodies) {
+    if (body.rigid || n < body.node_begin || n >= body.node_end) continue;
+    const auto& c = body.centre;
     const auto& v = body.velocity;
     const auto& w = body.angular_velocity;
-    for (int n = body.node_begin; n < body.node_end; ++n) {
-      const double r[3] = {m.X[3 * n] - c[0], m.X[3 * n + 1] - c[1], m.X[3 * n + 2] - c[2]};
-      V[3 * n + 0] = v[0] + w[1] * r[2] - w[2] * r[1];
-      V[3 * n + 1] = v[1] + w[2] * r[0] - w[0] * r[2];
-      V[3 * n + 2] = v[2] + w[0] * r[1] - w[1] * r[0];
-    }
+    const double* X = m.x(n);
+    const double r[3] = {X[0] - c[0], X[1] - c[1], X[2] - c[2]};
+    return {v[0] + w[1] * r[2] - w[2] * r[1], v[1] + w[2] * r[0] - w[0] * r[2],
+            v[2] + w[0] * r[1] - w[1] * r[0]};
+  }
+  return {0.0, 0.0, 0.0};
+}
+
+std::vector<double> initial_velocity(const Model& m) {
+  if (!m.holds_all_nodes()) throw Error("internal: initial_velocity of every node needs them all");
+  std::vector<double> V(m.X.size(), 0.0);
+  for (int n = 0; n < m.num_nodes(); ++n) {
+    const auto v = initial_velocity(m, n);
+    std::copy(v.begin(), v.end(), V.begin() + 3 * std::size_t(n));
   }
   return V;
+}
+
+int Model::local_node(int n) const {
+  if (node_ids.empty()) return n >= 0 && n < held_nodes() ? n : -1;
+  const auto it = std::lower_bound(node_ids.begin(), node_ids.end(), n);
+  return it != node_ids.end() && *it == n ? static_cast<int>(it - node_ids.begin()) : -1;
+}
+
+int Model::held_node(int n) const {
+  const int l = local_node(n);
+  if (l < 0) throw Error("internal: node " + std::to_string(n) + " is not held on this rank");
+  return l;
+}
+
+void keep_nodes(Model& m, std::vector<int> held) {
+  const int global = m.num_nodes();
+  std::vector<double> X(3 * held.size());
+  std::vector<char> fixed(held.size()), massless(m.massless.empty() ? 0 : held.size());
+  for (std::size_t l = 0; l < held.size(); ++l) {
+    const int l0 = m.held_node(held[l]);
+    std::copy_n(&m.X[3 * std::size_t(l0)], 3, &X[3 * l]);
+    fixed[l] = m.fixed[l0];
+    if (!massless.empty()) massless[l] = m.massless[l0];
+  }
+  m.X = std::move(X);
+  m.fixed = std::move(fixed);
+  m.massless = std::move(massless);
+  m.node_ids = std::move(held);
+  m.global_nodes = global;
 }
 
 }  // namespace emc::fem

@@ -3,6 +3,7 @@
 #include <Zoltan2_BasicVectorAdapter.hpp>
 #include <Zoltan2_PartitioningProblem.hpp>
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cstdint>
 #include <numeric>
@@ -27,13 +28,13 @@ std::uint64_t spread3(std::uint64_t v) {
 
 double centroid(const Model& m, int e, int i) {
   double c = 0;
-  for (int a = 0; a < 4; ++a) c += 0.25 * m.X[3 * m.tets[4 * e + a] + i];
+  for (int a = 0; a < 4; ++a) c += 0.25 * m.x(m.tets[4 * e + a])[i];
   return c;
 }
 
 std::vector<std::uint64_t> morton_keys(const Model& m) {
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (int n = 0; n < m.num_nodes(); ++n)
+  for (int n = 0; n < m.held_nodes(); ++n)  // the kept nodes' box is the whole model's
     for (int i = 0; i < 3; ++i) {
       lo[i] = std::min(lo[i], m.X[3 * n + i]);
       hi[i] = std::max(hi[i], m.X[3 * n + i]);
@@ -322,6 +323,38 @@ Partition part_of_held(const Model& m, std::vector<int> node_owner, int rank) {
   return p;
 }
 
+/// The nodes a rank keeps (ascending): those of its held tets, every deformable body's
+/// boundary and named surfaces (contact's slaves and masters, the Dirichlet surfaces), the
+/// massless nodes and their fits' supports. The boundary nodes hold the bodies' extremes, so
+/// bounding boxes over the kept nodes are the whole model's (morton_keys, the scale checks).
+std::vector<int> nodes_to_keep(const Model& m) {
+  std::vector<int> keep(m.tets.begin(), m.tets.end());
+  const auto add = [&](const Body& b, const std::vector<std::array<int, 3>>& tris) {
+    for (const auto& t : tris)
+      for (int a : t) keep.push_back(b.node_begin + a);
+  };
+  for (const Body& b : m.bodies) {
+    if (b.rigid) continue;
+    add(b, b.mesh.boundary);
+    for (const auto& named : b.mesh.surfaces) add(b, named.second);
+  }
+  const auto& fit = m.massless_fit;
+  keep.insert(keep.end(), fit.node.begin(), fit.node.end());
+  keep.insert(keep.end(), fit.support.begin(), fit.support.end());
+  std::sort(keep.begin(), keep.end());
+  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  return keep;
+}
+
+/// The model's per-node arrays and the partition's owners reduced to the nodes to keep.
+void keep_my_nodes(Model& m, Partition& p) {
+  std::vector<int> keep = nodes_to_keep(m);
+  std::vector<int> owner(keep.size());
+  for (std::size_t l = 0; l < keep.size(); ++l) owner[l] = p.owner(m, keep[l]);
+  p.node_owner = std::move(owner);
+  keep_nodes(m, std::move(keep));
+}
+
 }  // namespace
 
 Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm) {
@@ -349,7 +382,9 @@ Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm) {
   m.body_of_tet = std::move(h.body);
   m.tet_gid = std::move(h.gid);
   m.owned_tets = h.owned;
-  return part_of_held(m, std::move(owner), rank);
+  Partition p = part_of_held(m, std::move(owner), rank);
+  keep_my_nodes(m, p);
+  return p;
 }
 
 }  // namespace emc::fem

@@ -3,6 +3,7 @@
 // contact nodes (docs/THEORY.md §8), activation (§6.3), the quantities the active-set loop
 // reads (normal forces, gaps), the chains of P (§3) and the closure's energy (docs/THEORY.md
 // §7). What a law constrains lives in its Law (law.hpp); the §6 loop in active_set.hpp.
+#include <algorithm>
 #include <array>
 #include <map>
 #include <memory>
@@ -91,7 +92,7 @@ class Contact {
   ActiveIndex gather_all(const std::vector<Active>& mine) const;
   /// Whether global node n is a node of some pair's master facets (a chain's link, §3).
   bool master_node(int n) const {
-    return n >= 0 && n < int(master_node_.size()) && master_node_[n];
+    return std::binary_search(master_nodes_.begin(), master_nodes_.end(), n);
   }
 
   /// Adds w du_{node,c} to row r in terms of q: the dof itself if free, nothing if rigid or
@@ -135,7 +136,7 @@ class Contact {
   std::vector<std::shared_ptr<const Law>> laws_;
   std::vector<const Law*> distinct_laws_;
   mutable ContactNodes nodes_;
-  std::vector<char> master_node_;  ///< per model node: a node of some pair's master facets
+  std::vector<int> master_nodes_;  ///< the deformable nodes of the pairs' master facets, sorted
   void check_facing(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
   void check_overlap(const Pair& pr, const std::vector<double>& x, const std::string& file) const;
   std::vector<Active> detect_pair(int p, Positions x0, Positions x1,

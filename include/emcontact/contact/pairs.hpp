@@ -48,8 +48,9 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
 void mark_massless_slaves(const std::vector<Pair>& pairs, fem::Model& model,
                           const std::string& file);
 
-/// Current positions of every geometry node: X + u for deformable nodes (u: all 3 N
-/// displacements, replicated), rigid_X for the rigid ones.
+/// Current positions of every geometry node: X + u for the deformable nodes the model holds
+/// (u: all 3 N displacements, or empty for none; 0 at the nodes not held), rigid_X for the
+/// rigid ones. Of global size: for the set-up only.
 std::vector<double> positions(const fem::Model& model, const std::vector<double>& u);
 
 /// The outward unit normal of the slave surface at slave node s (global id) in configuration

@@ -1,9 +1,10 @@
 #pragma once
 // The description of the problem: all bodies' meshes concatenated, materials, initial
-// velocities, loads and fixed nodes. The per-node data (coordinates, fixed and massless flags)
-// and the bodies' surfaces are on every rank; the tetrahedra are on rank 0 until
-// fem::distribute hands every rank its part and a layer of ghosts (docs/developer-guide.md,
-// "Distributed model").
+// velocities, loads and fixed nodes. The tetrahedra are on rank 0 and the per-node data
+// (coordinates, fixed and massless flags) on every rank until fem::distribute hands every
+// rank its part of the tets and a layer of ghosts, and keeps of the per-node data only the
+// nodes those tets use and the bodies' surface nodes (docs/developer-guide.md, "Distributed
+// model"). Nodes keep their global ids everywhere: Model::x(n), is_fixed(n), is_massless(n).
 #include <Teuchos_ParameterList.hpp>
 #include <array>
 #include <cstdint>
@@ -48,7 +49,12 @@ struct MasslessFit {
 };
 
 struct Model {
-  std::vector<double> X;         ///< reference coordinates, 3 per global node
+  /// The global ids of the nodes held here, ascending; empty while every node is held, node n
+  /// at n (before fem::distribute, or a model built on every rank). The per-node arrays X,
+  /// fixed and massless follow this order.
+  std::vector<int> node_ids;
+  int global_nodes = 0;          ///< the nodes of all deformable bodies (once node_ids is set)
+  std::vector<double> X;         ///< reference coordinates, 3 per held node
   std::vector<int> tets;         ///< 4 global node ids per held tet
   std::vector<int> body_of_tet;  ///< body index per held tet
   /// The global id of each held tet. Empty while the model holds every tet, tet e being id e
@@ -58,11 +64,12 @@ struct Model {
   std::vector<long long> tet_gid;
   int owned_tets = 0;         ///< held tets this rank owns (all held tets before distribute)
   long long global_tets = 0;  ///< the tets of all bodies
-  /// FNV-1a of X's then the global tets' bytes (the model's identity for checkpoints)
+  /// FNV-1a of the bytes of X, the global tets, rigid_X and fixed, all global (the model's
+  /// identity for checkpoints; computed where every tet is held)
   std::uint64_t mesh_fnv = 0;
   std::vector<Body> bodies;
-  std::vector<char> fixed;  ///< per global node: displacement prescribed to zero
-  /// per global node (or empty): its mass is moved onto massive nodes of its body
+  std::vector<char> fixed;  ///< per held node: displacement prescribed to zero
+  /// per held node (or empty): its mass is moved onto massive nodes of its body
   /// (docs/THEORY.md §6.8; the slave surfaces of pairs with `massless slave = true`)
   std::vector<char> massless;
   MasslessFit massless_fit;     ///< the massless nodes' affine fits (fit_massless_nodes)
@@ -71,7 +78,20 @@ struct Model {
   kernels::Integrator integrator = kernels::Integrator::energy_momentum;
   Scatter scatter = resolve_scatter(ScatterChoice::automatic);  ///< Solver/Assembly/scatter
 
-  int num_nodes() const { return static_cast<int>(X.size() / 3); }
+  /// The global node count (of the deformable bodies; rigid nodes are numbered after them).
+  int num_nodes() const { return node_ids.empty() ? static_cast<int>(X.size() / 3) : global_nodes; }
+  int held_nodes() const { return static_cast<int>(X.size() / 3); }
+  bool holds_all_nodes() const { return node_ids.empty(); }
+  /// The index of global node n in the per-node arrays, or -1 when it is not held here.
+  int local_node(int n) const;
+  /// The index of global node n in the per-node arrays; throws Error when it is not held.
+  int held_node(int n) const;
+  /// The global id of held node l.
+  int node_id(int l) const { return node_ids.empty() ? l : node_ids[l]; }
+  /// The reference coordinates of global node n (held here).
+  const double* x(int n) const { return &X[3 * static_cast<std::size_t>(held_node(n))]; }
+  bool is_fixed(int n) const { return fixed[held_node(n)] != 0; }
+  bool is_massless(int n) const { return !massless.empty() && massless[held_node(n)] != 0; }
   int num_tets() const { return static_cast<int>(tets.size() / 4); }  ///< held tets
   /// The global id of held tet e.
   long long tet_id(int e) const { return tet_gid.empty() ? e : tet_gid[e]; }
@@ -94,9 +114,16 @@ void fnv_into(std::uint64_t& h, const std::vector<T>& v) {
 Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMesh> meshes,
                   const std::string& file);
 
-/// Initial velocity per global node (3 each): v + omega x (X - X_c), X_c the body's centre of
-/// mass (docs/THEORY.md §1.3 consistent mass: the volume-weighted centroid of its tets).
+/// The initial velocity of global node n (held here): v + omega x (X - X_c), X_c its body's
+/// centre of mass (docs/THEORY.md §1.3 consistent mass: the volume-weighted centroid of its
+/// tets).
+std::array<double, 3> initial_velocity(const Model& m, int n);
+/// The initial velocity of every node (3 each) of a model holding every node.
 std::vector<double> initial_velocity(const Model& m);
+
+/// Keeps of the per-node arrays (X, fixed, massless) only the global nodes `held` (ascending,
+/// with every node the held tets use): m.node_ids becomes `held`.
+void keep_nodes(Model& m, std::vector<int> held);
 
 /// Centre of mass of body b in the reference configuration (Body::centre).
 inline std::array<double, 3> centre_of_mass(const Model& m, int b) {

@@ -19,7 +19,10 @@ struct Partition {
       my_tets;  ///< this rank's tets (indices of the model's held tets), in Morton order
   std::vector<int> owned_nodes;   ///< sorted global node ids this rank owns
   std::vector<int> shared_nodes;  ///< sorted global node ids used by my tets, owned elsewhere
-  std::vector<int> node_owner;    ///< owner rank of every global node (-1: used by no tet)
+  /// The owner rank of each node the model holds (Model::node_ids' order; -1: used by no tet).
+  std::vector<int> node_owner;
+  /// The owner rank of global node n, held by m.
+  int owner(const Model& m, int n) const { return node_owner[m.held_node(n)]; }
 };
 
 /// Zoltan2's imbalance_tolerance: the largest part holds at most this times the mean number
@@ -35,9 +38,12 @@ Partition partition(const Model& m, const Teuchos::RCP<const Comm>& comm);
 /// rank 0 sends each rank, one after the other, its own tets and its ghosts, and keeps only its
 /// own. Before: rank 0's m holds every tet (build_model); the other ranks' hold none (or a
 /// replicated copy, ignored). After: see Model::tet_gid; the bodies' geometry, mesh_fnv and
-/// the massless fit are rank 0's on every rank. Returns this rank's part: the same tets in the
-/// same order, owners and shared nodes as partition() of the whole model (my_tets then index
-/// the held tets). On one rank the model stays as it is.
+/// the massless fit are rank 0's on every rank, and the per-node arrays (Model::node_ids) keep
+/// only the nodes of the held tets, of every deformable body's boundary and named surfaces
+/// (contact's and the boundary conditions' nodes), the massless nodes and their fits' supports.
+/// Returns this rank's part: the same tets in the same order, owners and shared nodes as
+/// partition() of the whole model (my_tets then index the held tets; node_owner the held
+/// nodes). On one rank the model stays as it is.
 Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm);
 
 /// Every global tet id, ordered along the Morton curve of the tets' centroids (in the cube

@@ -189,7 +189,9 @@ void expect_distribute_matches_partition(const Model& whole) {
   ASSERT_EQ(p.my_tets.size(), ref.my_tets.size());
   for (std::size_t k = 0; k < p.my_tets.size(); ++k)
     EXPECT_EQ(m.tet_id(p.my_tets[k]), ref.my_tets[k]);
-  EXPECT_EQ(p.node_owner, ref.node_owner);
+  ASSERT_EQ(p.node_owner.size(), static_cast<std::size_t>(m.held_nodes()));
+  for (int l = 0; l < m.held_nodes(); ++l)
+    EXPECT_EQ(p.node_owner[l], ref.node_owner[m.node_id(l)]) << "node " << m.node_id(l);
   EXPECT_EQ(p.owned_nodes, ref.owned_nodes);
   EXPECT_EQ(p.shared_nodes, ref.shared_nodes);
   // every held tet as in the whole model; own tets first, each group ascending
@@ -214,6 +216,25 @@ void expect_distribute_matches_partition(const Model& whole) {
   }
   EXPECT_EQ(ghosts, expected);
   if (np > 1 && rank == 0) EXPECT_FALSE(expected.empty());  // the owner of the interface
+  // the per-node arrays: exactly the held tets' nodes and the massless fits' (these test models
+  // have no surfaces), each as in the whole model
+  std::set<int> used(m.tets.begin(), m.tets.end());
+  const auto& fit = whole.massless_fit;
+  used.insert(fit.node.begin(), fit.node.end());
+  used.insert(fit.support.begin(), fit.support.end());
+  EXPECT_EQ(m.num_nodes(), whole.num_nodes());
+  ASSERT_EQ(m.held_nodes(), static_cast<int>(used.size()));
+  int l = 0;
+  for (int n : used) {
+    EXPECT_EQ(m.node_id(l), n);
+    EXPECT_EQ(m.local_node(n), l);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(m.x(n)[c], whole.X[3 * n + c]);
+    EXPECT_EQ(m.is_fixed(n), whole.fixed[n] != 0);
+    EXPECT_EQ(m.is_massless(n), !whole.massless.empty() && whole.massless[n] != 0);
+    ++l;
+  }
+  if (np > 1 && whole.massless.empty())  // a rank's share and a layer, not the whole
+    EXPECT_LT(m.held_nodes(), whole.num_nodes() * (1.0 / np + 0.35));
   // rank 0's results on every rank; the own tets add up to the whole
   EXPECT_EQ(m.mesh_fnv, whole.mesh_fnv);
   EXPECT_EQ(m.bodies[0].centre, whole.bodies[0].centre);
