@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <sstream>
+#include <unordered_set>
 
 #include "emcontact/contact/active.hpp"
 #include "emcontact/contact/detection.hpp"  // entry_rule, kernels::facet_outside
@@ -144,7 +145,7 @@ void check_xi(const double* xi, bool off, const contact::Pair& pair, int slave,
 void check_active(const output::Checkpoint& c, const Simulation& sim, const std::string& path) {
   static const std::vector<contact::Pair> none;
   const auto& pairs = sim.contact ? sim.contact->pairs() : none;
-  std::vector<char> seen(sim.model.num_nodes(), 0);
+  std::unordered_set<int> seen;
   for (std::size_t k = 0; k + contact::kPackedActive <= c.active.size();
        k += contact::kPackedActive) {
     const int slave = index_in(c.active[k], sim.model.num_nodes(), "node", path);
@@ -153,7 +154,7 @@ void check_active(const output::Checkpoint& c, const Simulation& sim, const std:
     if (!std::binary_search(pair.slaves.begin(), pair.slaves.end(), slave))
       refuse(path, "the checkpoint's active node " + std::to_string(slave) +
                        " is not a slave node of pair " + pair.name);
-    if (seen[slave]++)  // one entry per slave node: its unknowns are eliminated once (§3)
+    if (!seen.insert(slave).second)  // one entry per slave node: eliminated once (§3)
       refuse(path, "the checkpoint's active node " + std::to_string(slave) +
                        " is listed twice (allowed: one entry per slave node)");
     if (!std::isfinite(c.active[k + 3]) || !std::isfinite(c.active[k + 4]) ||
