@@ -138,3 +138,41 @@ PY
   expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
     --set Output/progress=false --set Output/plot=false --restart ck/checkpoint.h5
 }
+
+# A checkpoint written on 2 ranks whose u is stored in checksummed chunks (HDF5's Fletcher-32
+# filter), its last chunk corrupted on disk: restarted on 3 ranks, only the last rank reads
+# that chunk and fails; every rank stops with its one line (no hang), nothing is written. The
+# same file with the chunk intact runs.
+hostile_one_rank_failing_to_read_its_block_stops_every_rank() {
+  local before
+  pio_two_rank_checkpoint || return 1
+  cp -r ck chunked && cp -r ck broken || return 1
+  /usr/bin/python3 - <<'PY' || return 1
+import h5py
+def chunked(path):
+    with h5py.File(path, 'r+') as f:
+        u, attrs = f['u'][:], dict(f['u'].attrs)
+        del f['u']
+        d = f.create_dataset('u', data=u, chunks=(8,), fletcher32=True)
+        for k, v in attrs.items():
+            d.attrs[k] = v
+        n = d.id.get_num_chunks()
+        last = d.id.get_chunk_info(n - 1)
+        assert n > 3 and last.chunk_offset[0] >= 2 * len(u) // 3  # in the last rank's block
+        return last.byte_offset
+chunked('chunked/checkpoint.h5')
+offset = chunked('broken/checkpoint.h5')
+with open('broken/checkpoint.h5', 'r+b') as f:
+    f.seek(offset)
+    b = f.read(1)
+    f.seek(offset)
+    f.write(bytes([b[0] ^ 0xff]))
+PY
+  expect_exit_within 120 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
+    --set Output/progress=false --restart broken/checkpoint.h5 || return 1
+  expect_err "broken/checkpoint\.h5: cannot read the checkpoint dataset u" &&
+    pio_one_error_line || return 1
+  [ "$(cd ck && ls -l --time-style=+%s.%N | md5sum)" = "$before" ] || { echo "ck/ changed"; return 1; }
+  expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
+    --set Output/progress=false --set Output/plot=false --restart chunked/checkpoint.h5
+}
