@@ -88,7 +88,7 @@ def row(r, d):
 
 def fit(results, base):
     """Least squares over every rank of every run: peak - baseline = R tets + S tets / N (bytes),
-    R the replicated bytes per tet on every rank, S the distributed bytes per tet; rank 0 only
+    R the bytes per tet on every rank, S the distributed bytes per tet; rank 0 only
     on 1 rank (on more, its peak holds what is left of Gmsh's meshing: perf/README.md)."""
     import numpy as np
     rows, rhs = [], []
@@ -134,8 +134,8 @@ def write(results, baseline, steps, argv):
     for runs in results.values():
         md += [row(r, r) for r in runs]
     md += ['', 'Fitted over every run and rank but rank 0 on 2+ ranks (least squares, peak - baseline = R tets + '
-           'S tets / N): R = %.0f bytes per tet on every rank (the replicated model), S = %.0f bytes per tet shared '
-           'by the ranks.' % (f['replicated_bytes_per_tet'], f['distributed_bytes_per_tet']),
+           'S tets / N): R = %.0f bytes per tet on every rank (what is not divided among the ranks: '
+           'ghosts, interface rows, surfaces), S = %.0f bytes per tet shared by the ranks.' % (f['replicated_bytes_per_tet'], f['distributed_bytes_per_tet']),
            '', '![peak resident memory per rank](results/memory.png)']
     text = '\n'.join(md)
     print(text)

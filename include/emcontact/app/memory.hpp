@@ -29,8 +29,10 @@ constexpr double kMappedBaseBytes = 120e6;
 constexpr double kMappedBytesPerTet = 2300;
 constexpr double kResidentBaseBytes = 20e6;
 constexpr double kResidentBytesPerTet = 1200;
-/// Bytes per tetrahedron every rank holds whatever the rank count (the replicated model: node
-/// coordinates, tets, their body, partition and colouring).
+/// Bytes per tetrahedron a rank holds whatever the rank count, rounded up: rank 0's whole mesh
+/// during the set-up (about 60), the other ranks' broadcast nodes and surfaces then, and on
+/// every rank what is not divided among the ranks (ghosts, interface rows, surfaces: R = 50 in
+/// perf/README.md's fit).
 constexpr double kReplicatedBytesPerTet = 100;
 
 /// Bytes one of `ranks` ranks needs beyond its start-up for a model of `tets` tetrahedra:
