@@ -96,6 +96,22 @@ pio_two_rank_checkpoint() {
   before=$(cd ck && ls -l --time-style=+%s.%N | md5sum)
 }
 
+# DIR/checkpoint.h5 restarted on 3 ranks: refused within 120 s (no hang), with an error
+# matching PATTERN, in one line.
+pio_refused_on_three() {
+  expect_exit_within 120 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
+    --set Output/progress=false --restart "$1/checkpoint.h5" || return 1
+  expect_err "$2" && pio_one_error_line
+}
+
+# ck/ as pio_two_rank_checkpoint left it (its listing `before`), and DIR/checkpoint.h5
+# restarted on 3 ranks runs to the end.
+pio_unchanged_and_runs_on_three() {
+  [ "$(cd ck && ls -l --time-style=+%s.%N | md5sum)" = "$before" ] || { echo "ck/ changed"; return 1; }
+  expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
+    --set Output/progress=false --set Output/plot=false --restart "$1/checkpoint.h5"
+}
+
 # A checkpoint written on 2 ranks, restarted on 3 with another mesh (a longer block) or another
 # material: refused before anything is written, one line, on every rank count alike.
 hostile_checkpoint_of_two_ranks_for_another_model_refused_on_three() {
@@ -126,17 +142,9 @@ with h5py.File('changed/checkpoint.h5', 'r+') as f:
     u[-1] += 1e-9  # the last rank's block
     f['u'][:] = u
 PY
-  expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
-    --set Output/progress=false --restart no_v/checkpoint.h5 || return 1
-  expect_err "no_v/checkpoint\.h5: not an emcontact checkpoint \(no dataset V\)" &&
-    pio_one_error_line || return 1
-  expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
-    --set Output/progress=false --restart changed/checkpoint.h5 || return 1
-  expect_err "changed/checkpoint\.h5: the checksum does not match the contents" &&
-    pio_one_error_line || return 1
-  [ "$(cd ck && ls -l --time-style=+%s.%N | md5sum)" = "$before" ] || { echo "ck/ changed"; return 1; }
-  expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
-    --set Output/progress=false --set Output/plot=false --restart ck/checkpoint.h5
+  pio_refused_on_three no_v "no_v/checkpoint\.h5: not an emcontact checkpoint \(no dataset V\)" &&
+    pio_refused_on_three changed "changed/checkpoint\.h5: the checksum does not match the contents" &&
+    pio_unchanged_and_runs_on_three ck
 }
 
 # A checkpoint written on 2 ranks whose u is stored in checksummed chunks (HDF5's Fletcher-32
@@ -168,11 +176,6 @@ with open('broken/checkpoint.h5', 'r+b') as f:
     f.seek(offset)
     f.write(bytes([b[0] ^ 0xff]))
 PY
-  expect_exit_within 120 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
-    --set Output/progress=false --restart broken/checkpoint.h5 || return 1
-  expect_err "broken/checkpoint\.h5: cannot read the checkpoint dataset u" &&
-    pio_one_error_line || return 1
-  [ "$(cd ck && ls -l --time-style=+%s.%N | md5sum)" = "$before" ] || { echo "ck/ changed"; return 1; }
-  expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Time/end=0.1 \
-    --set Output/progress=false --set Output/plot=false --restart chunked/checkpoint.h5
+  pio_refused_on_three broken "broken/checkpoint\.h5: cannot read the checkpoint dataset u" &&
+    pio_unchanged_and_runs_on_three chunked
 }
