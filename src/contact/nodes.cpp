@@ -168,11 +168,13 @@ void ContactNodes::slave_box_data(const std::vector<int>& mine) {
   Kokkos::View<LO* [3], ExecSpace> dof("emc::slave_dofs", mine.size());
   auto Xh = Kokkos::create_mirror_view(X);
   auto dh = Kokkos::create_mirror_view(dof);
-  for (std::size_t k = 0; k < mine.size(); ++k)
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    const double* Xk = m.x(mine[k]);
     for (int c = 0; c < 3; ++c) {
-      Xh(k, c) = m.x(mine[k])[c];
+      Xh(k, c) = Xk[c];
       dh(k, c) = map.getLocalElement(fem::dof_gid(mine[k], c));
     }
+  }
   Kokkos::deep_copy(X, Xh);
   Kokkos::deep_copy(dof, dh);
   slave_X_.push_back(X);
@@ -251,13 +253,15 @@ std::vector<std::vector<int>> ContactNodes::facets_in_reach(const Sweep& from,
     }
     for (int f : held_[p]) {
       double box[6] = {kHuge, kHuge, kHuge, -kHuge, -kHuge, -kHuge};
-      for (int a : pr.facets[f])
+      for (int a : pr.facets[f]) {
+        const double* Xa = m.x(a);
         for (const auto* v : {&v0, &v1}) {
           double x[3];
           for (int c = 0; c < 3; ++c)
-            x[c] = m.x(a)[c] + (*v)(overlap.getLocalElement(fem::dof_gid(a, c)), 0);
+            x[c] = Xa[c] + (*v)(overlap.getLocalElement(fem::dof_gid(a, c)), 0);
           grow(box, x);
         }
+      }
       for (int r = 0; r < nr; ++r)
         if (boxes_meet(box, &all[6 * (r * np + p)])) sends[r].insert(sends[r].end(), {p, f});
     }

@@ -68,7 +68,8 @@ void fill_local(ContactState& s, const Contact& contact, const std::vector<Activ
   for (std::size_t k = 0; k < n; ++k) {
     const Active& a = mine[k];
     const Pair& p = contact.pairs()[a.pair];
-    for (int c = 0; c < 3; ++c) X(k, c) = m.x(a.slave)[c];
+    const double* Xs = m.x(a.slave);
+    for (int c = 0; c < 3; ++c) X(k, c) = Xs[c];
     edge(k) = entry_rule(p).edge;
     if (slides(p, a)) sliding[static_cast<int>(p.kind)].push_back(static_cast<int>(k));
   }

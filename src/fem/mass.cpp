@@ -392,9 +392,10 @@ void Discretization::add_moved_monitors(const Vector& u, const Vector& V,
   const LO nodes = static_cast<LO>(owned_->getNodeNumElements() / 3);
   for (LO k = 0; k < nodes; ++k) {
     const GO node = owned_->getGlobalElement(3 * k) / 3;
+    const double* X = model_.x(static_cast<int>(node));
     double x[3], pk[3];
     for (int i = 0; i < 3; ++i) {
-      x[i] = model_.x(static_cast<int>(node))[i] + hu(3 * k + i, 0);
+      x[i] = X[i] + hu(3 * k + i, 0);
       pk[i] = hp(3 * k + i, 0);
       m.kinetic += 0.5 * hV(3 * k + i, 0) * pk[i];
       m.L[i] += pk[i];
