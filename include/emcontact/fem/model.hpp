@@ -144,7 +144,8 @@ void moved_element_mass(const Model& m, int e, std::vector<int>& nodes, std::vec
 
 /// The row sums of the mass matrix per global node, M 1 (one component; docs/THEORY.md §1.3 and,
 /// with massless nodes, §6.8): sum_n (row sum)_n V_n is the linear momentum of a field V. From
-/// this rank's own tets: on a distributed model, the sum over the ranks is M 1.
+/// this rank's own tets: on a distributed model, the sum over the ranks is M 1. A vector over
+/// every global node: for tests and checks, not for the solver.
 std::vector<double> mass_row_sums(const Model& m);
 
 }  // namespace emc::fem
