@@ -106,32 +106,6 @@ long long block_begin(long long ne, int r, int np) {
   return ne * r / np;
 }
 
-/// The owner of every node of m (all its tets held, `part` the rank of each): among the k ranks
-/// with a tet touching node n, in ascending order, the (n mod k)-th, so that the interface
-/// nodes are shared out evenly (given all to the lowest rank, rank 0 owned the most rows and
-/// had the largest peak memory); -1 where no tet touches it. Beyond 64 ranks the lowest.
-std::vector<int> node_owners(const Model& m, const std::vector<int>& part, int ranks) {
-  std::vector<int> owner(m.num_nodes(), -1);
-  if (ranks > 64) {
-    for (int e = 0; e < m.num_tets(); ++e)
-      for (int a = 0; a < 4; ++a) {
-        int& o = owner[m.tets[4 * std::size_t(e) + a]];
-        o = o < 0 ? part[e] : std::min(o, part[e]);
-      }
-    return owner;
-  }
-  std::vector<std::uint64_t> touching(m.num_nodes(), 0);
-  for (int e = 0; e < m.num_tets(); ++e)
-    for (int a = 0; a < 4; ++a) touching[m.tets[4 * std::size_t(e) + a]] |= 1ULL << part[e];
-  for (int n = 0; n < m.num_nodes(); ++n) {
-    std::uint64_t mask = touching[n];
-    if (mask == 0) continue;
-    for (int skip = n % __builtin_popcountll(mask); skip > 0; --skip) mask &= mask - 1;
-    owner[n] = __builtin_ctzll(mask);
-  }
-  return owner;
-}
-
 /// The nodes of p.my_tets (tets of m) into p.owned_nodes and p.shared_nodes by p.node_owner.
 void split_nodes(const Model& m, Partition& p, int rank) {
   std::vector<int> used;
@@ -145,9 +119,9 @@ void split_nodes(const Model& m, Partition& p, int rank) {
 
 /// The partition for the part of every tet: my tets along the curve, the owners of node_owners.
 Partition assemble(const Model& m, const std::vector<int>& part_of_tet,
-                   const std::vector<std::uint64_t>& key, int rank, int ranks) {
+                   const std::vector<std::uint64_t>& key, int rank) {
   Partition p;
-  p.node_owner = node_owners(m, part_of_tet, ranks);
+  p.node_owner = node_owners(m, part_of_tet);
   for (int e = 0; e < m.num_tets(); ++e)
     if (part_of_tet[e] == rank) p.my_tets.push_back(e);
   sort_along_curve(p.my_tets, key);
@@ -156,6 +130,40 @@ Partition assemble(const Model& m, const std::vector<int>& part_of_tet,
 }
 
 }  // namespace
+
+// docs/developer-guide.md, "Decisions" (partition): the owner of every node of m (all its tets
+// held, `part` the rank of each) among the k ranks with a tet touching node n, in ascending
+// order, is the (n mod k)-th, so that the interface nodes are shared out evenly (given all to
+// the lowest rank, rank 0 owned the most rows and had the largest peak memory); -1 where no
+// tet touches it. A node with one touching rank is decided from the lowest and highest rank
+// touching it; only the interface nodes' (node, rank) pairs are listed, so that the memory
+// is O(nodes + interface) for any rank count.
+std::vector<int> node_owners(const Model& m, const std::vector<int>& part) {
+  std::vector<int> lo(m.num_nodes(), INT_MAX), hi(m.num_nodes(), -1);
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (int a = 0; a < 4; ++a) {
+      const int n = m.tets[4 * std::size_t(e) + a];
+      lo[n] = std::min(lo[n], part[e]);
+      hi[n] = std::max(hi[n], part[e]);
+    }
+  std::vector<std::uint64_t> shared;  // (node << 32 | rank) of the interface nodes
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (int a = 0; a < 4; ++a) {
+      const int n = m.tets[4 * std::size_t(e) + a];
+      if (lo[n] != hi[n]) shared.push_back(std::uint64_t(n) << 32 | std::uint32_t(part[e]));
+    }
+  std::sort(shared.begin(), shared.end());
+  shared.erase(std::unique(shared.begin(), shared.end()), shared.end());
+  std::vector<int> owner = std::move(hi);  // one touching rank: its owner; none: -1
+  for (std::size_t i = 0; i < shared.size();) {
+    const int n = static_cast<int>(shared[i] >> 32);
+    std::size_t k = i;
+    while (k < shared.size() && static_cast<int>(shared[k] >> 32) == n) ++k;
+    owner[n] = static_cast<int>(shared[i + n % (k - i)] & 0xffffffffu);
+    i = k;
+  }
+  return owner;
+}
 
 std::vector<int> morton_order(const Model& m) {
   std::vector<int> order(m.num_tets());
@@ -174,7 +182,7 @@ Partition partition(const Model& m, const Teuchos::RCP<const Comm>& comm) {
     const long long begin = block_begin(ne, rank, np), end = block_begin(ne, rank + 1, np);
     part_of_tet = allgather(*comm, zoltan2_parts(begin, centroids(m, begin, end), comm));
   }
-  return assemble(m, part_of_tet, morton_keys(m), rank, np);
+  return assemble(m, part_of_tet, morton_keys(m), rank);
 }
 
 namespace {
@@ -373,7 +381,7 @@ Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm) {
   std::vector<int> owner;
   std::vector<TetList> lists;
   if (rank == 0) {
-    owner = node_owners(m, part, np);
+    owner = node_owners(m, part);
     lists = tet_lists(m, part, owner, np);
   }
   broadcast_vector(*comm, owner);

@@ -46,6 +46,11 @@ Partition partition(const Model& m, const Teuchos::RCP<const Comm>& comm);
 /// nodes). On one rank the model stays as it is.
 Partition distribute(Model& m, const Teuchos::RCP<const Comm>& comm);
 
+/// The owner rank of every node of m (every tet held, part[e] the rank of tet e): among the k
+/// ranks with a tet touching node n, in ascending order, the (n mod k)-th; -1 where no tet
+/// touches it (any rank count).
+std::vector<int> node_owners(const Model& m, const std::vector<int>& part);
+
 /// Every global tet id, ordered along the Morton curve of the tets' centroids (in the cube
 /// around all nodes, 2^21 cells a side); ties in id order.
 std::vector<int> morton_order(const Model& m);

@@ -248,6 +248,27 @@ void expect_distribute_matches_partition(const Model& whole) {
 
 }  // namespace
 
+// The owner of a node is the (n mod k)-th of the k ranks touching it, for any rank count (here
+// 100 parts dealt out tet by tet, so that most nodes touch many of them, beyond 64).
+TEST(Partition, NodeOwnerAmongItsRanksForAnyRankCount) {
+  const Model m = stretched_box(6);
+  std::vector<int> part(m.num_tets());
+  for (int e = 0; e < m.num_tets(); ++e) part[e] = (7 * e) % 100;
+  const std::vector<int> owner = emc::fem::node_owners(m, part);
+  std::vector<std::set<int>> touching(m.num_nodes());
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (int a = 0; a < 4; ++a) touching[m.tets[4 * e + a]].insert(part[e]);
+  ASSERT_EQ(owner.size(), touching.size());
+  int many = 0;
+  for (int n = 0; n < m.num_nodes(); ++n) {
+    const std::vector<int> ranks(touching[n].begin(), touching[n].end());
+    ASSERT_FALSE(ranks.empty());
+    EXPECT_EQ(owner[n], ranks[n % ranks.size()]) << "node " << n;
+    many += ranks.size() > 1;
+  }
+  EXPECT_GT(many, m.num_nodes() / 2);
+}
+
 // The interface nodes shared out: every rank owns about as many nodes, within 5 % of the mean on
 // the 10^3 box (given all to the lowest rank, rank 0 owns its half and the 121 interface nodes
 // at 2 ranks: 9 % above the mean).
