@@ -104,15 +104,18 @@ double affine_fit(const Model& m, int c, const std::vector<int>& pts, std::vecto
   const double inf = std::numeric_limits<double>::infinity();
   const std::size_t k = pts.size();
   if (k < 4) return inf;
+  const double* xc = m.x(c);
   double R = 0;
-  for (int j : pts)
-    R = std::max(R,
-                 std::hypot(m.x(j)[0] - m.x(c)[0], m.x(j)[1] - m.x(c)[1], m.x(j)[2] - m.x(c)[2]));
+  for (int j : pts) {
+    const double* xj = m.x(j);
+    R = std::max(R, std::hypot(xj[0] - xc[0], xj[1] - xc[1], xj[2] - xc[2]));
+  }
   std::vector<std::array<double, 4>> a(k);
   double G[4][4] = {};
   for (std::size_t j = 0; j < k; ++j) {
     a[j][0] = 1;
-    for (int i = 0; i < 3; ++i) a[j][i + 1] = (m.x(pts[j])[i] - m.x(c)[i]) / R;
+    const double* xj = m.x(pts[j]);
+    for (int i = 0; i < 3; ++i) a[j][i + 1] = (xj[i] - xc[i]) / R;
     for (int p = 0; p < 4; ++p)
       for (int q = 0; q < 4; ++q) G[p][q] += a[j][p] * a[j][q];
   }
