@@ -36,9 +36,11 @@ fi
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build-asan
 if [ $unit = 1 ]; then
-  # the unit label's scripts (formatting, the module graph and walls, the test policy, Python)
-  # run no instrumented code: the release suite runs them
-  ctest --output-on-failure -j 2 -L unit -E '^(format|module_(graph|graph_refuses|walls)|python_scripts_parse|test_policy)$' "$@"
+  # the unit label's scripts (formatting, the module graph and walls, the test policy, Python,
+  # the one Kokkos of the linked binaries, of which --unit builds only the tests) run no
+  # instrumented code: the release suite runs them
+  ctest --output-on-failure -j 2 -L unit \
+    -E '^(format|module_(graph|graph_refuses|walls)|python_scripts_parse|test_policy|one_kokkos(_refuses)?)$' "$@"
 else
   ctest --output-on-failure -j 2 "$@"
 fi
