@@ -37,6 +37,28 @@ void check_path_length(const std::string& flag, const std::string& path) {
                      " bytes, paths shorter than " + std::to_string(PATH_MAX));
 }
 
+/// Sets `slot` to `v`, refusing a second `flag` (which one was meant is not for us to guess).
+void once(const std::string& flag, std::string& slot, const std::string& v) {
+  if (!slot.empty())
+    throw InputError(flag + " given twice (\"" + input::echo(slot) + "\" and \"" + input::echo(v) +
+                     "\"); allowed: once");
+  slot = v;
+}
+
+/// A warning if an earlier --set names the parameter of the last one: the last one applies (a
+/// wrapper script's default overridden on its command line), but a typo'd repeat is seen.
+void warn_repeated_set(Options& o) {
+  const auto name = [](const std::string& s) { return s.substr(0, s.find('=')); };
+  const std::string last = name(o.overrides.back());
+  for (std::size_t k = 0; k + 1 < o.overrides.size(); ++k)
+    if (name(o.overrides[k]) == last) {
+      o.warnings.push_back("--set " + input::echo(last) + " given twice (\"" +
+                           input::echo(o.overrides[k]) + "\", then \"" +
+                           input::echo(o.overrides.back()) + "\"): the last one applies");
+      return;
+    }
+}
+
 }  // namespace
 
 std::string usage() {
@@ -102,13 +124,14 @@ Options parse_args(int argc, char** argv) {
       o.help = true;
     } else if (a == "--set" || a.rfind("--set=", 0) == 0) {
       o.overrides.push_back(value("--set"));
+      warn_repeated_set(o);
     } else if (a == "--output" || a.rfind("--output=", 0) == 0) {
-      o.output_dir = value("--output");
+      once("--output", o.output_dir, value("--output"));
       check_path_length("--output", o.output_dir);
     } else if (a == "--overwrite") {
       o.overwrite = true;
     } else if (a == "--restart" || a.rfind("--restart=", 0) == 0) {
-      o.restart = value("--restart");
+      once("--restart", o.restart, value("--restart"));
     } else if (!a.empty() && a[0] == '-') {
       throw InputError("unknown option \"" + input::echo(a) + "\"\n" + usage());
     } else if (o.input.empty()) {

@@ -1,13 +1,17 @@
 // emcontact: conserving dynamic contact by direct elimination. See README.md.
+#include <mpi.h>
+
 #include <Teuchos_TimeMonitor.hpp>
 #include <Tpetra_Core.hpp>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "emcontact/app/error_exit.hpp"
+#include "emcontact/app/kokkos_options.hpp"
 #include "emcontact/app/memory.hpp"
 #include "emcontact/app/run.hpp"
 #include "emcontact/app/scale_check.hpp"
@@ -24,6 +28,17 @@ bool first_process() {
     if (const char* r = std::getenv(v)) return std::string(r) == "0";
   return true;
 }
+
+/// An error before MPI and Kokkos have both started: every rank has it (the same command
+/// line), the first process says it.
+int fail_before_start(const std::string& message) {
+  if (first_process()) std::fprintf(stderr, "error: %s\n", message.c_str());
+  int started = 0, finished = 0;
+  MPI_Initialized(&started);
+  MPI_Finalized(&finished);
+  if (started && !finished) MPI_Finalize();
+  return 1;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -37,7 +52,15 @@ int main(int argc, char** argv) {
     return 0;
   }
   emc::app::keep_freed_memory();  // before MPI and Kokkos allocate
-  Tpetra::ScopeGuard scope(&argc, &argv);
+  // Kokkos parses its options in the ScopeGuard and throws on a bad one: they are checked
+  // first, and anything else it throws still ends in one line
+  std::optional<Tpetra::ScopeGuard> scope;
+  try {
+    emc::app::check_kokkos_options(argc, argv);
+    scope.emplace(&argc, &argv);
+  } catch (const std::exception& e) {
+    return fail_before_start(e.what());
+  }
   emc::output::silence_hdf5_errors();  // errors are reported in one line each
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
@@ -49,6 +72,8 @@ int main(int argc, char** argv) {
     std::vector<char*> arg_ptrs{argv[0]};
     for (auto& a : args) arg_ptrs.push_back(a.data());
     const auto opt = emc::app::parse_args(static_cast<int>(arg_ptrs.size()), arg_ptrs.data());
+    if (root)
+      for (const auto& w : opt.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     if (opt.help) {
       if (root) std::cout << emc::app::usage() << std::endl;
       return 0;

@@ -29,6 +29,10 @@ SurfaceRef parse_ref(const fem::Model& m, const std::string& ref, const std::str
     if (m.bodies[b].name == body) r.body = static_cast<int>(b);
   }
   if (r.body < 0) throw InputError(where + ": no body named \"" + body + "\"; bodies: " + names);
+  // body/boundary is the whole boundary, as the body's name alone (unless the mesh names a
+  // surface "boundary" of its own)
+  if (r.surface == "boundary" && m.bodies[r.body].mesh.surfaces.count("boundary") == 0)
+    r.surface.clear();
   return r;
 }
 
@@ -49,7 +53,8 @@ std::vector<std::array<int, 3>> surface_triangles(const fem::Body& b, const std:
     std::vector<std::string> names;
     for (const auto& [n, t] : b.mesh.surfaces) names.push_back(n);
     throw InputError(where + ": body \"" + input::echo(b.name) + "\" has no surface \"" +
-                     input::echo(name) + "\"; its surfaces: " + input::echo_list(names, 10));
+                     input::echo(name) + "\"; its surfaces: " + input::echo_list(names, 10) +
+                     " and \"boundary\" (its whole boundary, also named by the body alone)");
   }
   return it->second;
 }

@@ -4,6 +4,7 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <initializer_list>
@@ -79,6 +80,45 @@ std::string other_encoding(const std::string& text) {
   return "";
 }
 
+/// The offset of the first byte of `text` that does not begin a well-formed UTF-8 sequence
+/// (RFC 3629: no overlong forms, no surrogates, nothing above U+10FFFF), or npos.
+std::size_t first_invalid_utf8(const std::string& text) {
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char b = byte(i);
+    std::size_t n = 0;                   // continuation bytes
+    unsigned char lo = 0x80, hi = 0xbf;  // the second byte's range
+    if (b < 0x80) {
+      ++i;
+      continue;
+    } else if (b >= 0xc2 && b <= 0xdf) {
+      n = 1;
+    } else if (b >= 0xe0 && b <= 0xef) {
+      n = 2;
+      if (b == 0xe0) lo = 0xa0;
+      if (b == 0xed) hi = 0x9f;
+    } else if (b >= 0xf0 && b <= 0xf4) {
+      n = 3;
+      if (b == 0xf0) lo = 0x90;
+      if (b == 0xf4) hi = 0x8f;
+    } else {
+      return i;
+    }
+    if (i + n >= text.size()) return i;  // cut short
+    for (std::size_t k = 1; k <= n; ++k) {
+      const unsigned char c = byte(i + k);
+      if (c < (k == 1 ? lo : 0x80) || c > (k == 1 ? hi : 0xbf)) return i;
+    }
+    i += n + 1;
+  }
+  return std::string::npos;
+}
+
+/// The 1-based line of byte `at` of `text`.
+std::size_t line_of(const std::string& text, std::size_t at) {
+  return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
 /// The text of the input as UTF-8 without its byte order mark (which Teuchos' parser refuses).
 /// Refuses UTF-16 and UTF-32 (a byte order mark, or NUL bytes, which UTF-8 text never holds).
 std::string utf8_text(std::string text, const std::string& file) {
@@ -91,6 +131,14 @@ std::string utf8_text(std::string text, const std::string& file) {
   if (nul != std::string::npos)
     cannot_read(file, "it holds a NUL byte (byte " + std::to_string(nul) +
                           "): not text, or UTF-16" + how + "UTF-16 -t UTF-8");
+  const auto bad = first_invalid_utf8(text);
+  if (bad != std::string::npos) {
+    char hex[8];
+    std::snprintf(hex, sizeof(hex), "0x%02x", static_cast<unsigned char>(text[bad]));
+    cannot_read(file, "byte " + std::to_string(bad) + " (line " +
+                          std::to_string(line_of(text, bad)) + ", " + hex + ") is not UTF-8" + how +
+                          "ISO-8859-1 -t UTF-8 (if that is its encoding)");
+  }
   if (text.compare(0, 3, "\xef\xbb\xbf") == 0) text.erase(0, 3);  // UTF-8's byte order mark
   return text;
 }
@@ -141,6 +189,25 @@ std::string name_of(const Teuchos::XMLObject& x, const std::string& file, const 
   return x.getAttribute("name");
 }
 
+/// Refuses a name no --set, message or output can address: empty, holding '/' (the separator of
+/// a parameter's path) or a control character (a newline in a name breaks one-line messages).
+void check_name(const std::string& file, const std::string& path, const std::string& name) {
+  const auto control = std::find_if(name.begin(), name.end(), [](char c) {
+    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+  });
+  std::string what;
+  if (name.empty())
+    what = "an empty name";
+  else if (name.find('/') != std::string::npos)
+    what = "the name \"" + shorten(name) + "\" holds '/', which separates the levels of a path";
+  else if (control != name.end())
+    what = "the name \"" + shorten(name) + "\" holds a control character";
+  if (what.empty()) return;
+  fail(file, path.empty() ? "(top level)" : path,
+       {"a parameter or list with " + what,
+        "names of printable characters without '/', e.g. \"ball\" or \"ball on plate\""});
+}
+
 /// Scans a <ParameterList> element: names unique, values of int/double/bool/arrays valid.
 void scan_list(const Teuchos::XMLObject& list, const std::string& path, const std::string& file) {
   std::set<std::string> seen;
@@ -149,6 +216,7 @@ void scan_list(const Teuchos::XMLObject& list, const std::string& path, const st
     if (child.getTag() != "Parameter" && child.getTag() != "ParameterList") continue;
     const std::string name = name_of(child, file, path);
     const std::string p = path.empty() ? name : path + "/" + name;
+    check_name(file, path, name);
     if (!seen.insert(name).second) fail(file, p, {"given twice", "each name once per list"});
     if (child.getTag() == "ParameterList") {
       scan_list(child, p, file);

@@ -453,3 +453,79 @@ hostile_long_override_truncated() {
     [ "$bytes" -lt 2000 ] || { echo "stderr has $bytes bytes for --set ${o:0:20}..."; return 1; }
   done
 }
+
+# A malformed value of one of Kokkos' own options aborted (an uncaught std::invalid_argument
+# from Kokkos::initialize: exit 134 and Open MPI's backtrace banner): one line naming the
+# option, exit 1, on 1 and 2 ranks.
+hostile_malformed_kokkos_option_one_line() {
+  emc_good_input in.xml
+  local o
+  for o in --kokkos-threads=abc --kokkos-threads=-5 --kokkos-threads=99999999999 \
+    --kokkos-numa=abc --kokkos-threads --kokkos-ndevices=2,x --threads=abc; do
+    expect_exit 1 "$EMC" in.xml --set Output/progress=false "$o" --output k || return 1
+    expect_short_err 1 && expect_err "^error: Kokkos option \"${o%%=*}.*allowed: " || return 1
+  done
+  expect_exit 1 "${MPIRUN[@]}" -np 2 "$EMC" in.xml --kokkos-threads=abc --output k || return 1
+  [ "$(grep -c '^error: ' last.err)" = 1 ] && expect_err "Kokkos option \"--kokkos-threads=abc\"" ||
+    { echo "not one line:"; cat last.err; return 1; }
+  if grep -q "Signal: Aborted\|terminate called" last.err; then cat last.err; return 1; fi
+  [ ! -e k ] || { echo "k/ was created"; return 1; }
+  expect_exit 0 "$EMC" in.xml --set Output/progress=false --kokkos-threads=1 --output k || return 1
+}
+
+# Names no --set, message or output can address are refused naming the list: empty, holding
+# '/', a newline, invalid UTF-8 (each ran, exit 0; "A/xmax" was then suggested as the value it
+# refused).
+hostile_unaddressable_names_refused() {
+  emc_contact_input two.xml
+  sed 's|name="B"|name="A/xmax"|; s|value="B"/>|value="A/xmax"/>|' two.xml >slash.xml
+  expect_exit 1 "$EMC" slash.xml || return 1
+  expect_short_err 1 && expect_err "slash\.xml: parameter \"Bodies\": .*\"A/xmax\" holds '/'" || return 1
+  emc_good_input in.xml
+  sed 's|name="block"|name=""|' in.xml >empty.xml
+  expect_exit 1 "$EMC" empty.xml || return 1
+  expect_short_err 1 && expect_err "empty\.xml: parameter \"Bodies\": .*an empty name" || return 1
+  sed 's|name="block"|name="a\&#10;b"|' in.xml >newline.xml
+  expect_exit 1 "$EMC" newline.xml || return 1
+  expect_short_err 1 && expect_err "newline\.xml: .*\"a\\\\nb\" holds a control character" || return 1
+  printf 's|name="block"|name="b\xff\xfex"|' >s.sed && sed -f s.sed in.xml >latin.xml
+  expect_exit 1 "$EMC" latin.xml || return 1
+  expect_short_err 1 && expect_err "latin\.xml: cannot read the input: byte [0-9]+ \(line 9, 0xff\) is not UTF-8" ||
+    return 1
+  # UTF-8 names are fine
+  sed 's|name="block"|name="blöck"|' in.xml >utf8.xml
+  expect_exit 0 "$EMC" utf8.xml --set Output/progress=false --output u || return 1
+}
+
+# body/boundary names the body's whole boundary as a contact surface, as the guide says (it was
+# refused: 'body "B" has no surface "boundary"'); the run is the one of the body's name alone.
+hostile_body_boundary_is_a_contact_surface() {
+  emc_contact_input two.xml
+  expect_exit 0 "$EMC" two.xml --set Output/progress=false --set Time/end=0.03 \
+    "--set=Contact/A on B/master=B/boundary" --output slash || return 1
+  expect_exit 0 "$EMC" two.xml --set Output/progress=false --set Time/end=0.03 \
+    "--set=Contact/A on B/master=B" --output whole || return 1
+  cmp -s slash/monitors.csv whole/monitors.csv || { echo "B/boundary is not B"; return 1; }
+  expect_exit 1 "$EMC" two.xml --set Time/end=0.03 "--set=Contact/A on B/master=B/bound" || return 1
+  expect_short_err 1 && expect_err "no surface \"bound\"; its surfaces: .* and \"boundary\"" || return 1
+}
+
+# The same option twice took the last one silently. --output and --restart twice are refused
+# naming both (which directory was meant is not for the run to guess); a --set of one parameter
+# twice is said in one warning and the last one applies (a wrapper script's default overridden
+# on its own command line, as with make VAR=...).
+hostile_repeated_options_refused_or_warned() {
+  emc_good_input in.xml
+  expect_exit 1 "$EMC" in.xml --output o1 --output o2 || return 1
+  expect_short_err 1 && expect_err "^error: --output given twice \(\"o1\" and \"o2\"\)" || return 1
+  expect_exit 1 "$EMC" in.xml --restart a/checkpoint.h5 --restart=b/checkpoint.h5 || return 1
+  expect_short_err 1 && expect_err "^error: --restart given twice" || return 1
+  [ ! -e o1 ] && [ ! -e o2 ] || { echo "an output directory was created"; return 1; }
+  expect_exit 0 "$EMC" in.xml --set Output/progress=false --set Time/end=0.05 --set=Time/end=0.02 \
+    --output o3 || return 1
+  [ "$(grep -c . last.err)" = 1 ] &&
+    expect_err "^warning: --set Time/end given twice \(\"Time/end=0\.05\", then \"Time/end=0\.02\"\): the last one applies" ||
+    return 1
+  [ "$(rst_last_step o3/monitors.csv 2>/dev/null || tail -1 o3/monitors.csv | cut -d, -f1)" = 2 ] ||
+    { echo "the last --set did not apply"; return 1; }
+}

@@ -15,6 +15,7 @@ struct Options {
   std::string restart;                 ///< --restart FILE: continue from a checkpoint
   bool overwrite = false;              ///< --overwrite: replace an earlier run's files in DIR
   bool help = false;
+  std::vector<std::string> warnings;  ///< for rank 0 to print: a --set given twice
 };
 
 /// Parses argv; throws InputError with the usage on a bad command line.
