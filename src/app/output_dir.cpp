@@ -47,7 +47,8 @@ bool exists(const std::string& path) {
 }  // namespace
 
 OutputDirectory::OutputDirectory(const Options& opt, const output::Settings& output,
-                                 const Comm& comm) {
+                                 const Comm& comm, const output::OutputSize& need)
+    : need_(need), every_(output.every) {
   if (!opt.restart.empty()) source_ = output::parent_directory(opt.restart);
   // a restart continues in its checkpoint's directory unless --output names another
   path_ = !opt.output_dir.empty() ? opt.output_dir : !source_.empty() ? source_ : output.directory;
@@ -77,12 +78,22 @@ void OutputDirectory::prepare(const Options& opt) {
       locked = true;
     }
     earlier_files_go(opt);
+    check_room(opt, true);
   } else {
+    check_room(opt, false);
     output::make_directory(path_);
     dir_ = output::Directory(path_);
   }
   if (!locked) lock_ = output::DirectoryLock(dir_);
   if (earlier_files_go(opt)) output::remove_owned_files(dir_);  // the rule under the lock
+}
+
+void OutputDirectory::check_room(const Options& opt, bool exists) const {
+  double free = output::free_bytes(path_);
+  // --overwrite frees the earlier run's files; a restart in place rewrites its own
+  if (exists && free >= 0 && (opt.overwrite || !opt.restart.empty()))
+    free += output::owned_bytes(dir_);
+  output::check_room(path_, need_, free, every_);
 }
 
 bool OutputDirectory::earlier_files_go(const Options& opt) const {

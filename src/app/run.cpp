@@ -64,33 +64,6 @@ RCP<Vector> initial_velocity(const fem::Discretization& disc) {
   return out;
 }
 
-output::MonitorRow monitor_row(const fem::Discretization& disc, const time::State& s,
-                               const time::StepReport& rep) {
-  const auto m = disc.monitors(*s.u, *s.V);
-  output::MonitorRow r;
-  r.step = s.step;
-  r.time = s.t;
-  r.kinetic = m.kinetic;
-  r.elastic = m.elastic;
-  r.potential = m.potential;
-  r.total = m.kinetic + m.elastic + m.potential;
-  for (int i = 0; i < 3; ++i) {
-    r.L[i] = m.L[i];
-    r.J[i] = m.J[i];
-    r.com[i] = m.mass > 0 ? m.moment[i] / m.mass : 0.0;
-  }
-  r.active_contacts = rep.contact.active;
-  r.gap_min = rep.contact.active ? rep.contact.gap_min : 0.0;
-  r.gap_max = rep.contact.active ? rep.contact.gap_max : 0.0;
-  r.contact_resolves = rep.contact.resolves;
-  r.normal_force_min = rep.contact.normal_force_min;
-  r.dissipated = s.dissipated;
-  r.newton_iterations = rep.newton_iterations;
-  r.dt = rep.dt;
-  r.linear_iterations = rep.linear_iterations;
-  return r;
-}
-
 /// The monitors (rank 0), the fields (every rank its block of rows: node_rows, tet_rows) and the
 /// checkpoints' blocks (dofs).
 struct Writers {
@@ -258,6 +231,33 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   return sim;
 }
 
+output::MonitorRow monitor_row(const fem::Discretization& disc, const time::State& s,
+                               const time::StepReport& rep) {
+  const auto m = disc.monitors(*s.u, *s.V);
+  output::MonitorRow r;
+  r.step = s.step;
+  r.time = s.t;
+  r.kinetic = m.kinetic;
+  r.elastic = m.elastic;
+  r.potential = m.potential;
+  r.total = m.kinetic + m.elastic + m.potential;
+  for (int i = 0; i < 3; ++i) {
+    r.L[i] = m.L[i];
+    r.J[i] = m.J[i];
+    r.com[i] = m.mass > 0 ? m.moment[i] / m.mass : 0.0;
+  }
+  r.active_contacts = rep.contact.active;
+  r.gap_min = rep.contact.active ? rep.contact.gap_min : 0.0;
+  r.gap_max = rep.contact.active ? rep.contact.gap_max : 0.0;
+  r.contact_resolves = rep.contact.resolves;
+  r.normal_force_min = rep.contact.normal_force_min;
+  r.dissipated = s.dissipated;
+  r.newton_iterations = rep.newton_iterations;
+  r.dt = rep.dt;
+  r.linear_iterations = rep.linear_iterations;
+  return r;
+}
+
 Summary run(const Options& opt, RCP<const Comm> comm) {
   Teuchos::Time clock("emcontact: wall", true);
   auto sim = setup(opt, comm);
@@ -280,7 +280,10 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
     restart = read_restart(*sim, opt.restart);
     row0 = apply_restart(*sim, *dofs, restart, opt.restart);
   }
-  const OutputDirectory output_dir(opt, out, *comm);  // held open and locked until the run returns
+  // what the run will write, from the steps it has left at the nominal dt
+  const auto need = output::estimate_output(out, model.num_nodes(), model.global_tets,
+                                            (stepper.end() - state.t) / stepper.nominal_dt());
+  const OutputDirectory output_dir(opt, out, *comm, need);  // open and locked until the end
   const output::Directory dir = output::shared_directory(raw_comm(*comm), output_dir.dir());
   sum.output_dir = output_dir.path();
   Writers w = make_writers(disc, output_dir, out.every, std::move(dofs));

@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <utility>
 
 #include "emcontact/error.hpp"
 #include "emcontact/output/safe_temp.hpp"
@@ -105,6 +106,64 @@ void make_directory(const std::string& dir) {
   struct stat st {};
   if (::stat(dir.c_str(), &st) != 0) throw os_error("cannot create directory", dir, errno);
   if (!S_ISDIR(st.st_mode)) throw os_error("cannot create directory", dir, ENOTDIR);
+}
+
+GrowingFile::~GrowingFile() {
+  if (fd_ < 0) return;
+  (void)::fsync(fd_);  // best effort: the writers sync() where it matters
+  ::close(fd_);
+}
+
+GrowingFile::GrowingFile(GrowingFile&& o) noexcept
+    : fd_(std::exchange(o.fd_, -1)), size_(o.size_), path_(std::move(o.path_)) {}
+
+GrowingFile& GrowingFile::operator=(GrowingFile&& o) noexcept {
+  if (this != &o) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = std::exchange(o.fd_, -1);
+    size_ = o.size_;
+    path_ = std::move(o.path_);
+  }
+  return *this;
+}
+
+void GrowingFile::replace(const Directory& dir, const std::string& name,
+                          const std::string& content) {
+  atomic_write(dir, name, content);
+  if (fd_ >= 0) ::close(fd_);
+  path_ = dir.path(name);
+  fd_ = ::openat(dir.fd(), name.c_str(), O_WRONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd_ < 0) throw os_error("cannot write", path_, errno);
+  size_ = content.size();
+}
+
+void GrowingFile::write_at(std::size_t offset, const std::string& text) {
+  if (fd_ < 0 || offset > size_) throw Error("cannot write '" + path_ + "': not open at that end");
+  const char* p = text.data();
+  std::size_t left = text.size(), at = offset;
+  int err = 0;
+  while (left > 0 && err == 0) {
+    const ssize_t n = ::pwrite(fd_, p, left, static_cast<off_t>(at));
+    if (n < 0) {
+      if (errno != EINTR) err = errno;
+      continue;
+    }
+    p += n;
+    at += static_cast<std::size_t>(n);
+    left -= static_cast<std::size_t>(n);
+  }
+  if (err == 0 && offset + text.size() < size_ &&
+      ::ftruncate(fd_, static_cast<off_t>(offset + text.size())) != 0)
+    err = errno;
+  if (err != 0) {
+    (void)::ftruncate(fd_, static_cast<off_t>(size_));  // what was written beyond the old end
+    throw os_error("cannot write", path_, err);
+  }
+  size_ = offset + text.size();
+}
+
+void GrowingFile::sync() const {
+  if (fd_ >= 0 && ::fsync(fd_) != 0) throw os_error("cannot write", path_, errno);
 }
 
 }  // namespace emc::output

@@ -7,38 +7,59 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <utility>
 
 #include "emcontact/error.hpp"
+#include "emcontact/output/safe_temp.hpp"
 
 namespace emc::output {
 namespace {
 
-/// fields_<digits>.h5, the frame files.
-bool is_frame_file(const std::string& name) {
-  const std::string prefix = "fields_", suffix = ".h5";
-  if (name.size() <= prefix.size() + suffix.size()) return false;
-  if (name.compare(0, prefix.size(), prefix) != 0) return false;
-  if (name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) return false;
-  const auto digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  return std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
-}
-
 bool is_owned(const std::string& name) {
   for (const char* f : {"monitors.csv", "checkpoint.h5", "fields.xdmf", "mesh.h5", "energies.png"})
     if (name == f) return true;
-  return is_frame_file(name);
+  return frame_step(name) >= 0;
 }
 
-/// `<owned name>.tmp.<anything>`: a temporary of ours left by a killed run.
+/// `<owned name>.tmp.<random>` as create_temp() names it (`.png` after energies.png's): a
+/// temporary of ours left by a killed run.
 bool is_owned_temporary(const std::string& name) {
   const std::size_t at = name.find(".tmp.");
-  return at != std::string::npos && is_owned(name.substr(0, at));
+  if (at == std::string::npos) return false;
+  const std::string target = name.substr(0, at);
+  if (!is_owned(target)) return false;
+  const std::string rest = name.substr(at + 5);
+  const std::string suffix = target == "energies.png" ? ".png" : "";
+  if (rest.size() != kTempRandomLength + suffix.size()) return false;
+  if (rest.compare(kTempRandomLength, suffix.size(), suffix) != 0) return false;
+  return std::all_of(rest.begin(), rest.begin() + kTempRandomLength,
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; });
 }
 
 }  // namespace
+
+std::string frame_file_name(long step) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "fields_%08ld.h5", step);
+  return buf;
+}
+
+long frame_step(const std::string& name) {
+  const std::string prefix = "fields_", suffix = ".h5";
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0)
+    return -1;
+  const char* first = name.data() + prefix.size();
+  const char* last = name.data() + name.size() - suffix.size();
+  long step = -1;
+  const auto res = std::from_chars(first, last, step);
+  if (res.ec != std::errc() || res.ptr != last || step < 0) return -1;
+  return frame_file_name(step) == name ? step : -1;
+}
 
 std::vector<std::string> owned_files(const Directory& dir) {
   std::vector<std::string> owned;
@@ -49,6 +70,16 @@ std::vector<std::string> owned_files(const Directory& dir) {
 
 std::vector<std::string> owned_files(const std::string& dir) {
   return owned_files(Directory(dir, true));
+}
+
+double owned_bytes(const Directory& dir) {
+  double bytes = 0;
+  for (const auto& name : owned_files(dir)) {
+    struct stat st {};
+    if (::fstatat(dir.fd(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode))
+      bytes += static_cast<double>(st.st_size);
+  }
+  return bytes;
 }
 
 void remove_owned_files(const Directory& dir) {

@@ -15,6 +15,7 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/output/atomic_file.hpp"
+#include "emcontact/output/directory.hpp"
 #include "emcontact/output/hdf5_file.hpp"
 #include "emcontact/output/parallel_hdf5.hpp"
 #include "hdf5_util.hpp"
@@ -88,13 +89,6 @@ std::string format_double(double v) {
   return std::string(buf, res.ptr);
 }
 
-/// "fields_00000042.h5": the per-frame file name, relative to the output directory.
-std::string frame_file_name(long step) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "fields_%08ld.h5", step);
-  return buf;
-}
-
 /// An XDMF HDF DataItem: `dims` like "1000 3", `type` "Float"/"Int", precision in bytes.
 std::string data_item(const std::string& dims, const char* type, int precision,
                       const std::string& ref, const char* indent) {
@@ -112,19 +106,6 @@ std::string attribute(const char* name, const char* type, const char* center,
 
 // ---------------------------------------------------------------------------------------------
 // Frames already in the directory (restart)
-
-/// The step of a frame file named exactly as frame_file_name(step), or -1.
-long frame_step(const std::string& name) {
-  const std::string prefix = "fields_", suffix = ".h5";
-  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0)
-    return -1;
-  const char* first = name.data() + prefix.size();
-  const char* last = name.data() + name.size() - suffix.size();
-  long step = -1;
-  const auto res = std::from_chars(first, last, step);
-  if (res.ec != std::errc() || res.ptr != last || step < 0) return -1;
-  return frame_file_name(step) == name ? step : -1;
-}
 
 /// Reads the time stored in the frame file `name` of `dir`; false if it is not a readable frame
 /// (a regular file only: a FIFO would block the open; a scalar or one-value float dataset).
@@ -221,10 +202,11 @@ void FieldWriter::write(const FieldFrame& f) {
                            [&](const auto& fr) { return fr.first == f.step; });
   if (same != frames_.end()) {
     same->second = f.time;
+    on_root(layout_.comm, [&] { write_xdmf(); });
   } else {
     frames_.emplace_back(f.step, f.time);
+    on_root(layout_.comm, [&] { add_to_xdmf(f.step, f.time); });
   }
-  on_root(layout_.comm, [&] { write_xdmf(); });
 }
 
 void FieldWriter::resume(long step) {
@@ -248,46 +230,64 @@ void FieldWriter::resume_root(long step) {
   write_xdmf();
 }
 
-void FieldWriter::write_xdmf() const {
+namespace {
+
+constexpr const char* kXdmfHead =
+    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+    "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n"
+    "  <Domain>\n"
+    "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+constexpr const char* kXdmfTail = "    </Grid>\n  </Domain>\n</Xdmf>\n";
+
+}  // namespace
+
+std::string FieldWriter::xdmf_grid(long step, double time) const {
   const std::string n = std::to_string(layout_.num_nodes), e = std::to_string(layout_.num_tets);
   const char* in = "          ";  // DataItem indentation
-  // The mesh parts are the same in every grid.
-  const std::string topology =
-      "        <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" + e +
-      "\" NodesPerElement=\"4\">\n" + data_item(e + " 4", "Int", 8, "mesh.h5:/topology", in) +
-      "        </Topology>\n";
-  const std::string geometry = "        <Geometry GeometryType=\"XYZ\">\n" +
-                               data_item(n + " 3", "Float", 8, "mesh.h5:/geometry", in) +
-                               "        </Geometry>\n";
-  const std::string body =
-      attribute("body", "Scalar", "Cell", data_item(e, "Int", 4, "mesh.h5:/body", in));
+  const std::string file = frame_file_name(step);
+  std::string x = "      <Grid Name=\"step_" + std::to_string(step) + "\" GridType=\"Uniform\">\n";
+  x += "        <Time Value=\"" + format_double(time) + "\"/>\n";
+  // the mesh parts are the same in every grid
+  x += "        <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" + e +
+       "\" NodesPerElement=\"4\">\n" + data_item(e + " 4", "Int", 8, "mesh.h5:/topology", in) +
+       "        </Topology>\n";
+  x += "        <Geometry GeometryType=\"XYZ\">\n" +
+       data_item(n + " 3", "Float", 8, "mesh.h5:/geometry", in) + "        </Geometry>\n";
+  x += attribute("displacement", "Vector", "Node",
+                 data_item(n + " 3", "Float", 8, file + ":/displacement", in));
+  x += attribute("velocity", "Vector", "Node",
+                 data_item(n + " 3", "Float", 8, file + ":/velocity", in));
+  x += attribute("von_mises", "Scalar", "Cell", data_item(e, "Float", 8, file + ":/von_mises", in));
+  x += attribute("contact_status", "Scalar", "Node",
+                 data_item(n, "Float", 8, file + ":/contact_status", in));
+  x += attribute("normal_force", "Scalar", "Node",
+                 data_item(n, "Float", 8, file + ":/normal_force", in));
+  x += attribute("slip", "Scalar", "Node", data_item(n, "Float", 8, file + ":/slip", in));
+  x += attribute("body", "Scalar", "Cell", data_item(e, "Int", 4, "mesh.h5:/body", in));
+  x += "      </Grid>\n";
+  return x;
+}
 
-  std::string x =
-      "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
-      "<Xdmf xmlns:xi=\"http://www.w3.org/2001/XInclude\" Version=\"3.0\">\n"
-      "  <Domain>\n"
-      "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (const auto& [step, time] : frames_) {
-    const std::string file = frame_file_name(step);
-    x += "      <Grid Name=\"step_" + std::to_string(step) + "\" GridType=\"Uniform\">\n";
-    x += "        <Time Value=\"" + format_double(time) + "\"/>\n";
-    x += topology + geometry;
-    x += attribute("displacement", "Vector", "Node",
-                   data_item(n + " 3", "Float", 8, file + ":/displacement", in));
-    x += attribute("velocity", "Vector", "Node",
-                   data_item(n + " 3", "Float", 8, file + ":/velocity", in));
-    x += attribute("von_mises", "Scalar", "Cell",
-                   data_item(e, "Float", 8, file + ":/von_mises", in));
-    x += attribute("contact_status", "Scalar", "Node",
-                   data_item(n, "Float", 8, file + ":/contact_status", in));
-    x += attribute("normal_force", "Scalar", "Node",
-                   data_item(n, "Float", 8, file + ":/normal_force", in));
-    x += attribute("slip", "Scalar", "Node", data_item(n, "Float", 8, file + ":/slip", in));
-    x += body;
-    x += "      </Grid>\n";
+void FieldWriter::write_xdmf() {
+  std::string x = kXdmfHead;
+  for (const auto& [step, time] : frames_) x += xdmf_grid(step, time);
+  x += kXdmfTail;
+  xdmf_.replace(dir_, "fields.xdmf", x);
+}
+
+void FieldWriter::add_to_xdmf(long step, double time) {
+  if (!xdmf_.is_open()) return write_xdmf();
+  const std::size_t at = xdmf_.size() - std::strlen(kXdmfTail);  // the closing tags
+  try {
+    xdmf_.write_at(at, xdmf_grid(step, time) + kXdmfTail);
+  } catch (const Error&) {
+    frames_.pop_back();
+    try {
+      xdmf_.write_at(at, kXdmfTail);  // within the old size: needs no new space
+    } catch (const Error&) {
+    }
+    throw;
   }
-  x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
-  atomic_write(dir_, "fields.xdmf", x);
 }
 
 }  // namespace emc::output

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/echo.hpp"
 #include "emcontact/input/files.hpp"
 #include "emcontact/output/atomic_file.hpp"
 
@@ -126,12 +127,14 @@ void chomp(std::string& line) {
 std::size_t check_header(const std::string& path, const std::string& line, bool& dissipated) {
   const std::vector<std::string> names = split_csv(line);
   dissipated = names.size() > kNumColumns && names[kNumColumns] == kDissipated;
-  bool ok = names.size() >= kNumColumns;
-  for (std::size_t i = 0; ok && i < kNumColumns; ++i) ok = names[i] == kColumns[i];
-  if (!ok) {
-    throw Error(path + ":1: not a monitors file: the header must start with '" + monitor_header() +
-                "', got '" + line + "'");
-  }
+  std::size_t differs = 0;  // the first column that is not the monitors', 1-based
+  for (std::size_t i = 0; differs == 0 && i < kNumColumns; ++i)
+    if (i >= names.size() || names[i] != kColumns[i]) differs = i + 1;
+  // the file's own text is not quoted: a link may point at any file the user can read
+  if (differs > 0)
+    throw Error(path + ":1: not a monitors file: its header's column " + std::to_string(differs) +
+                " is not '" + kColumns[differs - 1] + "' (the header starts '" +
+                input::echo(monitor_header()) + "')");
   return names.size();
 }
 
@@ -178,28 +181,30 @@ std::string format_row(const MonitorRow& r) {
 
 MonitorWriter::MonitorWriter(Directory dir, std::string name)
     : dir_(std::move(dir)), name_(std::move(name)) {
-  text_ = monitor_header() + '\n';
+  pending_ = monitor_header() + '\n';
 }
 
 MonitorWriter::MonitorWriter(const std::string& path)
     : MonitorWriter(directory_of(path), base_name(path)) {}
 
 void MonitorWriter::append(const MonitorRow& r) {
-  rows_.push_back(r);
-  text_ += format_row(r);
-  text_ += '\n';
+  pending_ += format_row(r);
+  pending_ += '\n';
+  ++rows_;
 }
 
 void MonitorWriter::flush(bool force, double min_seconds) {
   const double now = steady_seconds();
-  if (!force) {
-    const bool never_written = last_write_ == -1e300;
-    if (!never_written && written_ == rows_.size()) return;  // nothing new
-    if (now - last_write_ < min_seconds) return;             // too soon
+  if (file_.is_open() && pending_.empty() && !force) return;                 // nothing new
+  if (!force && file_.is_open() && now - last_write_ < min_seconds) return;  // too soon
+  if (!file_.is_open()) {
+    file_.replace(dir_, name_, pending_);  // the first write: the file of an earlier run goes
+  } else if (!pending_.empty()) {
+    file_.write_at(file_.size(), pending_);
   }
-  atomic_write(dir_, name_, text_);
+  if (force) file_.sync();
+  pending_.clear();
   last_write_ = now;
-  written_ = rows_.size();
 }
 
 std::vector<MonitorRow> read_monitors(const std::string& path) {

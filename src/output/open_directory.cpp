@@ -14,8 +14,26 @@
 #include "emcontact/error.hpp"
 
 namespace emc::output {
+namespace {
 
-Directory::Directory(const std::string& path, bool follow_link) : path_(path) {
+/// `path` without trailing "/" and "/." ("/" itself kept): "lnk/" and "lnk/." name the link
+/// lnk itself, which the kernel would resolve before O_NOFOLLOW or lstat() saw it.
+std::string without_trailing_slashes(std::string path) {
+  for (;;) {
+    if (path.size() > 1 && path.back() == '/')
+      path.pop_back();
+    else if (path.size() > 2 && path.compare(path.size() - 2, 2, "/.") == 0)
+      path.resize(path.size() - 2);
+    else
+      return path;
+  }
+}
+
+}  // namespace
+
+Directory::Directory(const std::string& given, bool follow_link)
+    : path_(without_trailing_slashes(given)) {
+  const std::string& path = path_;
   const int flags = O_RDONLY | O_DIRECTORY | O_CLOEXEC | (follow_link ? 0 : O_NOFOLLOW);
   fd_ = ::open(path.c_str(), flags);
   if (fd_ >= 0) return;

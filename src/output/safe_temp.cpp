@@ -18,7 +18,7 @@ std::string random_suffix() {
   static const char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
   std::random_device rd;  // the kernel's random source
   std::uniform_int_distribution<int> pick(0, sizeof(kChars) - 2);
-  std::string s(12, 'x');
+  std::string s(kTempRandomLength, 'x');
   for (char& c : s) c = kChars[pick(rd)];
   return s;
 }

@@ -217,3 +217,72 @@ hostile_restart_monitors_fifo_refused() {
     --output branch || return 1
   expect_short_err 1 && expect_err "monitors.csv.*FIFO" || return 1
 }
+
+# --overwrite removes exactly the names a run writes: fields_%08ld.h5 frames and temporaries as
+# create_temp names them. A user's fields_0.h5, fields_0000001.h5, a 20-digit "frame" and
+# mesh.h5.tmp.x only look like ours (they were deleted).
+hostile_overwrite_keeps_files_that_only_look_like_ours() {
+  emc_good_input in.xml
+  expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" --set Output/every=0 --output ow || return 1
+  local n
+  for n in fields_0.h5 fields_0000001.h5 fields_99999999999999999999.h5 mesh.h5.tmp.x \
+    monitors.csv.tmp.short notes.txt; do echo keep >"ow/$n"; done
+  expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" --set Output/every=0 --output ow --overwrite ||
+    return 1
+  for n in fields_0.h5 fields_0000001.h5 fields_99999999999999999999.h5 mesh.h5.tmp.x \
+    monitors.csv.tmp.short notes.txt; do
+    [ "$(cat "ow/$n" 2>/dev/null)" = keep ] || { echo "ow/$n was removed or changed"; return 1; }
+  done
+  # a directory holding only such names is not an earlier run's
+  mkdir only && echo keep >only/fields_0.h5
+  expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" --set Output/every=0 --output only || return 1
+}
+
+# A trailing slash (shell completion adds it) or "/." must not make --output follow a link
+# planted at the directory's name: refused as the plain name is, nothing written through it.
+hostile_output_link_with_trailing_slash_refused() {
+  emc_good_input in.xml
+  mkdir real && ln -s real lnk
+  local given
+  for given in lnk lnk/ lnk// lnk/.; do
+    expect_exit 1 "$EMC" in.xml "${EMC_QUIET[@]}" --output "$given" || return 1
+    expect_short_err 1 && expect_err "'lnk': it is a symbolic link" || return 1
+  done
+  [ -z "$(ls -A real)" ] || { echo "written through the link: $(ls -A real)"; return 1; }
+  expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" --output real/ || return 1
+  test -s real/monitors.csv || return 1
+}
+
+# A run whose output cannot fit on the file system (a frame per step for 1e9 steps, about
+# 45 TB) is refused before anything is created, naming the estimate and what to change; the
+# same run with fields every 1e6 steps is not refused for its fields.
+hostile_output_larger_than_the_disk_refused_before_it_starts() {
+  emc_good_input in.xml
+  expect_exit 1 "$EMC" in.xml "${EMC_QUIET[@]}" --set Time/end=1e7 --set Output/every=1 \
+    --output big || return 1
+  expect_short_err 1 &&
+    expect_err "output directory 'big': the run would write about .* frames of .* more than the .* free there; allowed: .*Output/every" ||
+    return 1
+  [ ! -e big ] || { echo "big/ was created"; return 1; }
+  mkdir old && expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" --output old || return 1
+  rst_before=$(cd old && sha256sum monitors.csv)
+  expect_exit 1 "$EMC" in.xml "${EMC_QUIET[@]}" --set Time/end=1e7 --set Output/every=1 \
+    --output old --overwrite || return 1
+  [ "$(cd old && sha256sum monitors.csv)" = "$rst_before" ] || { echo "old/ was overwritten"; return 1; }
+}
+
+# fields.xdmf grows by one grid per frame over its closing tags (it was rewritten whole, with an
+# fsync, at every frame: O(frames^2)). The index a run leaves is a valid XML document with every
+# frame, and the same bytes as a restart's from step 20 (written whole from the frame files up
+# to 20, then added to).
+hostile_fields_index_grows_by_appending() {
+  emc_good_input in.xml
+  expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" "${EMC_TUMBLE[@]}" --set Time/end=0.3 \
+    --set Output/every=1 --set "Output/checkpoint every=20" --output run || return 1
+  /usr/bin/python3 -c "import xml.dom.minidom,sys; d=xml.dom.minidom.parse('run/fields.xdmf'); \
+sys.exit(0 if len(d.getElementsByTagName('Time')) == 31 else 1)" || { echo "fields.xdmf: not 31 frames"; return 1; }
+  cp run/fields.xdmf appended.xdmf
+  expect_exit 0 "$EMC" in.xml "${EMC_QUIET[@]}" "${EMC_TUMBLE[@]}" --set Time/end=0.3 \
+    --set Output/every=1 --restart run/checkpoint.h5 || return 1
+  cmp -s appended.xdmf run/fields.xdmf || { echo "the appended index differs from the whole one"; return 1; }
+}

@@ -10,6 +10,7 @@
 #include "emcontact/input/input.hpp"
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
+#include "emcontact/output/monitors.hpp"
 #include "emcontact/time/stepper.hpp"
 
 namespace emc::app {
@@ -28,5 +29,10 @@ struct Simulation {
 
 /// Builds the simulation of `opt` (throws InputError before any work on bad input).
 std::unique_ptr<Simulation> setup(const Options& opt, Teuchos::RCP<const Comm> comm);
+
+/// The monitors.csv row of state `s` after the step `rep` reports (collective: the energies and
+/// momenta are sums over the ranks).
+output::MonitorRow monitor_row(const fem::Discretization& disc, const time::State& s,
+                               const time::StepReport& rep);
 
 }  // namespace emc::app

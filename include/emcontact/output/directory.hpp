@@ -8,13 +8,24 @@
 
 namespace emc::output {
 
+/// "fields_00000042.h5": the frame file of `step` (>= 0), relative to the output directory.
+std::string frame_file_name(long step);
+
+/// The step of a file named exactly as frame_file_name(step) makes it, or -1 for any other name
+/// (fields_0.h5, fields_0000001.h5 or a 20-digit step are not frame files).
+long frame_step(const std::string& name);
+
 /// The names in `dir` of files an emcontact run writes there: monitors.csv, checkpoint.h5,
 /// fields.xdmf, fields_<step>.h5, mesh.h5, energies.png (sorted).
 std::vector<std::string> owned_files(const Directory& dir);
 std::vector<std::string> owned_files(const std::string& dir);
 
-/// Removes the owned files of `dir` and the temporaries left by a killed writer; never any
-/// other file, never a directory. Throws emc::Error naming a file it cannot remove.
+/// The bytes of the owned files of `dir` (what --overwrite frees).
+double owned_bytes(const Directory& dir);
+
+/// Removes the owned files of `dir` and the temporaries left by a killed writer (named exactly as
+/// create_temp names them: `<owned>.tmp.<12 letters or digits>`, `.png` after energies.png's);
+/// never any other file, never a directory. Throws emc::Error naming a file it cannot remove.
 void remove_owned_files(const Directory& dir);
 void remove_owned_files(const std::string& dir);
 

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/open_directory.hpp"
 
 namespace emc::output {
@@ -47,8 +48,10 @@ class FieldWriter {
   /// The same in the directory named `dir` (created if missing).
   FieldWriter(const std::string& dir, const std::vector<double>& X,
               const std::vector<long long>& tets, const std::vector<int>& body_of_tet);
-  /// Writes DIR/fields_<step>.h5 atomically, then rewrites DIR/fields.xdmf atomically
-  /// (collective).
+  /// Writes DIR/fields_<step>.h5 atomically, then adds its grid to DIR/fields.xdmf: written
+  /// over the index's closing tags, O(one frame) whatever the number of frames (collective).
+  /// The index is replaced whole (atomically) at its first frame and when a step is written
+  /// again; a run killed in the middle of an addition gets its index rebuilt by --restart.
   void write(const FieldFrame& f);
   /// After a restart from `step`: lists the frames of DIR at steps <= `step` (their files
   /// readable), removes the frame files after it (the earlier run's), rewrites fields.xdmf
@@ -59,8 +62,11 @@ class FieldWriter {
   Directory dir_;
   FieldLayout layout_;
   std::vector<std::pair<long, double>> frames_;  // (step, time)
+  GrowingFile xdmf_;                             // rank 0: fields.xdmf, once written whole
   void resume_root(long step);
-  void write_xdmf() const;  ///< rank 0: the frames listed in frames_
+  void write_xdmf();                         ///< rank 0: the index of frames_, whole
+  void add_to_xdmf(long step, double time);  ///< rank 0: one grid over the closing tags
+  std::string xdmf_grid(long step, double time) const;
 };
 
 }  // namespace emc::output

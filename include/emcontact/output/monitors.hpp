@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/open_directory.hpp"
 
 namespace emc::output {
@@ -35,23 +36,25 @@ std::string format_row(const MonitorRow& r);  ///< %.17g for doubles: round-trip
 
 class MonitorWriter {
  public:
-  /// The file `name` of `dir` (monitors.csv), (re)written atomically on flush().
+  /// The file `name` of `dir` (monitors.csv): the first flush() replaces it atomically (the
+  /// header and the rows so far), later ones append the new rows.
   MonitorWriter(Directory dir, std::string name);
   /// The same for `path`, its directory opened by name.
   explicit MonitorWriter(const std::string& path);
   void append(const MonitorRow& r);
-  /// Rewrites the whole file atomically if `force` or if at least `min_seconds` passed since
-  /// the last write.
+  /// Writes the rows appended since the last write if `force` or if at least `min_seconds`
+  /// passed since then; `force` also syncs the file to disk (before a checkpoint, at the end).
   void flush(bool force = true, double min_seconds = 1.0);
-  const std::vector<MonitorRow>& rows() const { return rows_; }
+  /// Rows appended so far.
+  long rows() const { return rows_; }
 
  private:
   Directory dir_;
   std::string name_;
-  std::vector<MonitorRow> rows_;
+  GrowingFile file_;
+  long rows_ = 0;
   double last_write_ = -1e300;  // steady-clock seconds of the last write
-  std::size_t written_ = 0;     // rows_.size() at the last write
-  std::string text_;            // header + every formatted row: one write per flush
+  std::string pending_;         // the rows not yet written (the header before the first write)
 };
 
 /// Reads a monitors.csv written by MonitorWriter (for tests and tools); throws on bad format.

@@ -1,6 +1,8 @@
-// atomic_write / parent_directory / make_directory.
+// atomic_write / parent_directory / make_directory / GrowingFile.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
+#include <csignal>
 #include <fstream>
 #include <string>
 
@@ -82,6 +84,44 @@ TEST(MakeDirectory, FileInTheWayThrowsNamingDirectory) {
       EXPECT_NE(std::string(e.what()).find(target), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(GrowingFile, WritesOverItsEndAndAppends) {
+  TempDir dir;
+  GrowingFile f;
+  f.replace(Directory(dir.path()), "index.xml", "<a>\n</a>\n");
+  f.write_at(4, "  <b/>\n</a>\n");  // over the closing tag
+  f.write_at(f.size(), "tail\n");
+  EXPECT_EQ(slurp(dir / "index.xml"), "<a>\n  <b/>\n</a>\ntail\n");
+  EXPECT_EQ(f.size(), slurp(dir / "index.xml").size());
+  f.write_at(4, "</a>\n");  // shorter than what it overwrites: the file is cut there
+  EXPECT_EQ(slurp(dir / "index.xml"), "<a>\n</a>\n");
+  EXPECT_FALSE(has_temp_file(dir.path()));
+}
+
+TEST(GrowingFile, AFailedWriteLeavesTheFileAsItWas) {
+  TempDir dir;
+  GrowingFile f;
+  const std::string start(1000, 'a');
+  f.replace(Directory(dir.path()), "m.csv", start);
+  // a file size limit stands in for a full disk: the write fails part way (EFBIG)
+  struct rlimit old {};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old), 0);
+  auto* previous = std::signal(SIGXFSZ, SIG_IGN);
+  struct rlimit small = old;
+  small.rlim_cur = 1500;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  bool threw = false;
+  try {
+    f.write_at(f.size(), std::string(2000, 'b'));
+  } catch (const Error& e) {
+    threw = std::string(e.what()).find(dir / "m.csv") != std::string::npos;
+  }
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &old), 0);
+  std::signal(SIGXFSZ, previous);
+  EXPECT_TRUE(threw) << "no error naming the file";
+  EXPECT_EQ(slurp(dir / "m.csv"), start);
+  EXPECT_EQ(f.size(), start.size());
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -32,24 +33,42 @@ void touch(const std::string& path) {
 TEST(OutputDirectory, OwnedFilesAreExactlyOurs) {
   TempDir dir;
   for (const char* f : {"monitors.csv", "fields_00000010.h5", "notes.txt", "fields_x.h5",
-                        "mesh.h5.bak", "checkpoint.h5"})
+                        "mesh.h5.bak", "checkpoint.h5", "fields_123456789.h5", "fields_0.h5",
+                        "fields_0000001.h5", "fields_99999999999999999999.h5"})
     touch(dir / f);
   EXPECT_EQ(owned_files(dir.path()),
-            (std::vector<std::string>{"checkpoint.h5", "fields_00000010.h5", "monitors.csv"}));
+            (std::vector<std::string>{"checkpoint.h5", "fields_00000010.h5", "fields_123456789.h5",
+                                      "monitors.csv"}));
 }
 
 TEST(OutputDirectory, RemoveOwnedFilesKeepsEverythingElse) {
   TempDir dir;
   for (const char* f : {"monitors.csv", "mesh.h5", "fields.xdmf", "fields_00000000.h5",
-                        "energies.png", "monitors.csv.tmp.AbC123", "notes.txt", "run.log"})
+                        "energies.png", "monitors.csv.tmp.AbC123xyz789",
+                        "energies.png.tmp.0123456789ab.png", "notes.txt", "run.log"})
     touch(dir / f);
+  // names that only look like ours: a frame's step not as fields_%08ld.h5 writes it, a
+  // temporary's suffix not as create_temp makes it
+  const std::vector<std::string> lookalikes = {"fields_0.h5",
+                                               "fields_0000001.h5",
+                                               "fields_99999999999999999999.h5",
+                                               "fields_-0000001.h5",
+                                               "fields_+0000001.h5",
+                                               "mesh.h5.tmp.x",
+                                               "mesh.h5.tmp.AbC123xyz78",
+                                               "mesh.h5.tmp.AbC123xyz789.bak",
+                                               "energies.png.tmp.0123456789ab",
+                                               "monitors.csv.tmp.AbC123xyz7_9"};
+  for (const auto& f : lookalikes) touch(dir / f);
   std::filesystem::create_directory(dir / "fields_00000001.h5");
   TempDir elsewhere;
   touch(elsewhere / "victim");
   std::filesystem::create_symlink(elsewhere / "victim", dir / "checkpoint.h5");
   remove_owned_files(dir.path());
-  EXPECT_EQ(list_dir(dir.path()),
-            (std::vector<std::string>{"fields_00000001.h5", "notes.txt", "run.log"}));
+  std::vector<std::string> kept = lookalikes;
+  for (const char* f : {"fields_00000001.h5", "notes.txt", "run.log"}) kept.push_back(f);
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(list_dir(dir.path()), kept);
   EXPECT_EQ(slurp(elsewhere / "victim"), "x");  // the link went, not its target
 }
 
@@ -160,14 +179,19 @@ TEST(Directory, WritesFollowTheOpenedDirectoryNotItsName) {
 
 TEST(Directory, ALinkAsTheDirectoryIsRefusedNamingIt) {
   TempDir parent;
-  std::filesystem::create_directory_symlink(parent.path(), parent / "link");
-  try {
-    const Directory d(parent / "link");
-    FAIL() << "a link was opened as the directory";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("link"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("symbolic link"), std::string::npos) << e.what();
+  std::filesystem::create_directory(parent / "real");
+  std::filesystem::create_directory_symlink(parent / "real", parent / "link");
+  // a trailing slash (shell completion adds one) or "/." names the link too
+  for (const char* given : {"link", "link/", "link//", "link/.", "link/./"}) {
+    try {
+      const Directory d(parent / given);
+      FAIL() << "the link was followed for '" << given << "'";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("symbolic link"), std::string::npos) << e.what();
+    }
   }
+  for (const char* given : {"real", "real/", "real/."}) EXPECT_NO_THROW(Directory(parent / given));
+  EXPECT_NO_THROW(Directory("/"));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // FieldWriter: HDF5 files read back with the C API; XDMF index well-formed and complete.
 #include <gtest/gtest.h>
 #include <hdf5.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -165,6 +166,26 @@ TEST(FieldWriter, RewritingAStepReplacesItsFrame) {
   w.write(make_fake_frame(m, 2));
   w.write(make_fake_frame(m, 2));
   EXPECT_EQ(count(slurp(dir / "fields.xdmf"), "<Time "), 2u);
+}
+
+TEST(FieldWriter, FramesAreAddedToTheIndexNotRewritingIt) {
+  TempDir dir;
+  const FakeMesh m = make_fake_mesh(1);
+  FieldWriter w(dir.path(), m.X, m.tets, m.body);
+  w.write(make_fake_frame(m, 0));
+  struct stat first {};
+  ASSERT_EQ(::stat((dir / "fields.xdmf").c_str(), &first), 0);
+  for (long s = 1; s <= 30; ++s) w.write(make_fake_frame(m, s));
+  struct stat later {};
+  ASSERT_EQ(::stat((dir / "fields.xdmf").c_str(), &later), 0);
+  EXPECT_EQ(first.st_ino, later.st_ino) << "the index was replaced, not added to";
+  const std::string added = slurp(dir / "fields.xdmf");
+  EXPECT_EQ(count(added, "<Time "), 31u);
+  // the independent reference: the index written whole from the frame files (a restart's)
+  FieldWriter again(dir.path(), m.X, m.tets, m.body);
+  again.resume(30);
+  EXPECT_EQ(slurp(dir / "fields.xdmf"), added);
+  EXPECT_FALSE(has_temp_file(dir.path()));
 }
 
 TEST(FieldWriter, WrongSizesThrow) {

@@ -1,5 +1,6 @@
 // monitors.csv: header, exact round trip, parse errors, throttled flush.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdio>
@@ -101,13 +102,19 @@ TEST(Monitors, RoundTripIsBitIdentical) {
   TempDir dir;
   const std::string path = dir / "monitors.csv";
   MonitorWriter w(path);
-  for (long s = 0; s < 26; ++s) w.append(make_row(s, awkward, static_cast<std::size_t>(s)));
+  std::vector<MonitorRow> rows;
+  for (long s = 0; s < 26; ++s) rows.push_back(make_row(s, awkward, static_cast<std::size_t>(s)));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    w.append(rows[i]);
+    if (i % 7 == 0) w.flush();  // the first write replaces the file, the later ones append
+  }
   w.flush();
   EXPECT_FALSE(has_temp_file(dir.path()));
   const std::vector<MonitorRow> back = read_monitors(path);
-  ASSERT_EQ(back.size(), w.rows().size());
+  ASSERT_EQ(back.size(), rows.size());
+  EXPECT_EQ(w.rows(), static_cast<long>(rows.size()));
   for (std::size_t i = 0; i < back.size(); ++i) {
-    const MonitorRow& a = w.rows()[i];
+    const MonitorRow& a = rows[i];
     const MonitorRow& b = back[i];
     EXPECT_EQ(a.step, b.step);
     EXPECT_EQ(a.active_contacts, b.active_contacts);
@@ -219,6 +226,36 @@ TEST(Monitors, WriterIntoMissingDirectoryThrowsNamingIt) {
   } catch (const emc::Error& e) {
     EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
   }
+}
+
+TEST(Monitors, LaterFlushesAppendToTheFileTheFirstOneReplaced) {
+  TempDir dir;
+  const std::string path = dir / "monitors.csv";
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");  // an earlier run's longer file
+    ASSERT_NE(f, nullptr);
+    std::fputs((monitor_header() + "\n" + std::string(5000, 'x') + "\n").c_str(), f);
+    std::fclose(f);
+  }
+  MonitorWriter w(path);
+  w.append(make_row(0, {1.0}, 0));
+  w.flush(true);
+  const std::string first = slurp(path);
+  struct stat before {};
+  ASSERT_EQ(::stat(path.c_str(), &before), 0);
+  for (long s = 1; s <= 40; ++s) {
+    w.append(make_row(s, {2.0}, 0));
+    w.flush(s % 2 == 0, 0.0);
+  }
+  struct stat after {};
+  ASSERT_EQ(::stat(path.c_str(), &after), 0);
+  EXPECT_EQ(before.st_ino, after.st_ino) << "the file was replaced, not appended to";
+  const std::string all = slurp(path);
+  EXPECT_EQ(all.compare(0, first.size(), first), 0) << "the first write's text changed";
+  const auto back = read_monitors(path);
+  ASSERT_EQ(back.size(), 41u);
+  for (long s = 0; s <= 40; ++s) EXPECT_EQ(back[s].step, s);
+  EXPECT_FALSE(has_temp_file(dir.path()));
 }
 
 }  // namespace
