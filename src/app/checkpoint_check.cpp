@@ -233,4 +233,42 @@ void check_against_monitors(const output::Checkpoint& c,
   if (c.step > 0) need(c.last_h == row.dt, "last step size (dt of the row)", c.last_h, row.dt);
 }
 
+void check_facet_point(const contact::Active& a, const contact::Pair& pair,
+                       const std::array<double, 2>& d, const std::string& path) {
+  const double h = std::max(d[1], pair.edge);
+  const double allowed = pair.dmax + 2 * contact::entry_rule(pair).edge * h + 1e-9 * h;
+  if (!(d[0] <= allowed))
+    throw Error(path + ": the checkpoint's active node " + std::to_string(a.slave) + " of pair " +
+                pair.name + " lies " + number(d[0]) + " from its facet " + std::to_string(a.facet) +
+                "'s point at xi = (" + number(a.xi[0]) + ", " + number(a.xi[1]) +
+                ") (allowed: up to " + number(allowed) +
+                ", the pair's max penetration and the facet tolerance); refused (corrupt, or "
+                "forged)");
+}
+
+void check_restored_monitors(const output::MonitorRow& m, const MonitorScales& scales,
+                             const output::MonitorRow& row, const std::string& path,
+                             const std::string& monitors) {
+  auto need = [&](const char* what, double mine, double kept, double scale) {
+    if (std::fabs(mine - kept) <= kRestoreTolerance * scale) return;
+    throw Error(path + ": its state's " + what + " = " + number(mine) + " at step " +
+                std::to_string(row.step) + " disagrees with " + monitors + " (" + number(kept) +
+                " in the row of that step; allowed: a difference up to " +
+                number(kRestoreTolerance * scale) +
+                ", the round-off of its recomputation); refused (a checkpoint of another run "
+                "of this model, or corrupt)");
+  };
+  const double E = scales.energy, P = scales.momentum, R = scales.length;
+  need("kinetic energy", m.kinetic, row.kinetic, E);
+  need("elastic energy", m.elastic, row.elastic, E);
+  need("potential energy", m.potential, row.potential, E);
+  need("total energy", m.total, row.total, E);
+  static const char* L[] = {"Lx", "Ly", "Lz"};
+  static const char* J[] = {"Jx", "Jy", "Jz"};
+  static const char* com[] = {"com_x", "com_y", "com_z"};
+  for (int i = 0; i < 3; ++i) need(L[i], m.L[i], row.L[i], P);
+  for (int i = 0; i < 3; ++i) need(J[i], m.J[i], row.J[i], R * P);
+  for (int i = 0; i < 3; ++i) need(com[i], m.com[i], row.com[i], R);
+}
+
 }  // namespace emc::app

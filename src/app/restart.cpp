@@ -1,6 +1,7 @@
 #include "emcontact/app/restart.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -124,6 +125,34 @@ std::vector<output::MonitorRow> kept_monitors(const output::Checkpoint& c,
   return rows;
 }
 
+/// The restored u and V against the kept monitors row of the checkpoint's step (collective:
+/// every rank computes the monitors, rank 0 holds the rows; a refusal stops every rank).
+void check_restored_state(const Simulation& sim, const RestartInput& in, const std::string& path) {
+  const auto& disc = *sim.disc;
+  const auto& s = sim.state;
+  const auto m = disc.monitors(*s.u, *s.V);
+  const output::MonitorRow mine = monitor_row(disc, s, time::StepReport{});
+  const auto x = disc.reference_positions();
+  x->update(1.0, *s.u, 1.0);
+  MonitorScales scales;
+  scales.energy = m.kinetic + m.elastic + std::fabs(m.potential);
+  scales.momentum = std::sqrt(2.0 * m.mass * m.kinetic);
+  scales.length = std::sqrt(3.0) * x->normInf();  // collective
+  const std::string file = output::parent_directory(path) + "/monitors.csv";
+  // every active entry's facet point at its slave (each rank its own entries)
+  std::vector<std::array<double, 2>> d;
+  if (sim.contact && !sim.contact->empty()) {
+    sim.contact->select(*s.u, *s.u, sim.contact->gather(s.active));
+    d = sim.contact->facet_point_distances(sim.contact->positions(*s.u), s.active);
+  }
+  output::on_every_rank(raw_comm(*disc.comm()), [&] {
+    for (std::size_t k = 0; k < d.size(); ++k)
+      check_facet_point(s.active[k], sim.contact->pairs()[s.active[k].pair], d[k], path);
+    if (disc.comm()->getRank() == 0)
+      check_restored_monitors(mine, scales, in.rows.back(), path, file);
+  });
+}
+
 }  // namespace
 
 void save_checkpoint(const Simulation& sim, const RootGather& dofs, const output::Directory& dir,
@@ -181,12 +210,11 @@ output::MonitorRow apply_restart(Simulation& sim, const RootGather& dofs, Restar
     dofs.scatter(c.last_increment, *s.last_increment);
   }
   scatter_active(c, sim);
+  check_restored_state(sim, in, path);
   // docs/THEORY.md §7.2: which nodes keep their gap follows from u_n and the active set, as at
   // the end of the step that wrote the checkpoint
-  if (sim.contact && sim.contact->closes_gaps()) {
-    sim.contact->select(*s.u, *s.u, sim.contact->gather(s.active));
+  if (sim.contact && sim.contact->closes_gaps())
     sim.contact->mark_kept_gaps(s.active, sim.contact->positions(*s.u));
-  }
   // the preconditioner starts fresh, as after a checkpoint
   sim.solver->invalidate();
   sim.elim->forget_graph();

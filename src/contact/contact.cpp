@@ -95,6 +95,16 @@ void Contact::gap_range(Positions x1, const std::vector<Active>& active, double&
   Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MAX, 1, &h, &hi);
 }
 
+std::vector<std::array<double, 2>> Contact::facet_point_distances(
+    Positions x, const std::vector<Active>& active) const {
+  Kokkos::View<double* [2], ExecSpace> d("emc::facet_point_distances", active.size());
+  contact::facet_point_distances(refs(active), x, d);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
+  std::vector<std::array<double, 2>> out(active.size());
+  for (std::size_t k = 0; k < active.size(); ++k) out[k] = {h(k, 0), h(k, 1)};
+  return out;
+}
+
 // docs/THEORY.md §7.2: an active node behind its facet keeps its gap (closing it would push it
 // out: energy from nowhere); every other node of a closing pair is closed in the next step.
 void Contact::mark_kept_gaps(std::vector<Active>& active, Positions x1) const {

@@ -83,6 +83,62 @@ hostile_restart_forged_xi_outside_facet_refused() {
     return 1
 }
 
+# Forged: every entry on facet 0, or on the next entry's facet, xi kept inside it (index, xi
+# and slave all valid): the slave nodes lie far from their facet points. Accepted, the run went
+# on with the nodes held to the wrong facets (gap_min -2.8e-4, penetration).
+hostile_restart_forged_entry_on_another_facet_refused() {
+  rst_contact_checkpoint || return 1
+  local edit
+  for edit in facet-zero facet-rotated; do
+    rst_forged_refused "$edit" "active node [0-9]+ of pair .* lies [0-9.e+-]+ from its facet [0-9]+'s point" ||
+      return 1
+  done
+}
+
+# The same forgery in a checkpoint of 2 ranks, restarted on 3: each rank checks its own entries
+# and every rank stops with the one line.
+hostile_restart_forged_entry_on_another_facet_refused_across_ranks() {
+  cp "$HERE/../regression/two_blocks.xml" in.xml
+  "${MPIRUN[@]}" -np 2 "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.06 \
+    --set "Output/checkpoint every=6" --output ck >ck.log 2>&1 || { tail -3 ck.log; return 1; }
+  cp -r ck f
+  /usr/bin/python3 "$HERE/checkpoint_forge.py" f/checkpoint.h5 facet-rotated || return 1
+  expect_exit_within 120 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml "${RST_QUIET[@]}" \
+    --set Time/end=0.08 --restart f/checkpoint.h5 --output g || return 1
+  expect_err "f/checkpoint\.h5: the checkpoint's active node [0-9]+ of pair .* from its facet" ||
+    return 1
+  [ "$(grep -c "active node" last.err)" = 1 ] || { echo "not one line:"; cat last.err; return 1; }
+  # the intact checkpoint restarts on 3 ranks
+  expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.08 \
+    --restart ck/checkpoint.h5 --output h || return 1
+}
+
+# A checkpoint of another run of the same model (the initial velocity differs: the model
+# fingerprint leaves Initial out, as it should) copied over this run's: its u and V disagree
+# with the kept monitors row of its step. Accepted, the run continued with the other run's
+# state (total energy x14 at the next step, exit 0). As a branch (--output) too.
+hostile_restart_checkpoint_of_another_run_refused() {
+  cp "$HERE/../../inputs/tumbling_box.xml" in.xml
+  "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.03 --set "Output/checkpoint every=2" \
+    --output a >a.log 2>&1 || { tail -3 a.log; return 1; }
+  "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.03 --set "Output/checkpoint every=2" \
+    --set "Bodies/box/Initial/velocity={5, 0, 0}" --output b >b.log 2>&1 || { tail -3 b.log; return 1; }
+  cp b/checkpoint.h5 a/checkpoint.h5
+  rst_snapshot a >before.txt
+  local where
+  for where in "" "--output a2"; do
+    # shellcheck disable=SC2086
+    expect_exit 1 "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.05 --restart a/checkpoint.h5 $where ||
+      return 1
+    expect_short_err 1 &&
+      expect_err "a/checkpoint\.h5: its state's kinetic energy = .* at step 2 disagrees with a/monitors\.csv" ||
+      return 1
+  done
+  rst_snapshot a | cmp -s - before.txt || { echo "a/ changed"; return 1; }
+  [ ! -e a2 ] || { echo "the refused branch created a2/"; return 1; }
+  expect_exit 0 "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.05 --restart b/checkpoint.h5 || return 1
+}
+
 # Forged: a time t that is not the time of the checkpoint step's monitors row (t = 1e-300 made
 # time go back from step 6 to step 7; t + dt/2 shifted every later row).
 hostile_restart_forged_time_refused() {
@@ -226,4 +282,19 @@ hostile_plot_failure_names_its_cause() {
   if grep -q "matplotlib" last.err; then echo "blamed on matplotlib"; return 1; fi
   [ ! -e out/energies.png ] || { echo "an energies.png was left"; return 1; }
   if ls out | grep -q '\.tmp\.'; then echo "temporary left: $(ls out)"; return 1; fi
+}
+
+# A monitors.csv beside the checkpoint that is a link to another file (/etc/passwd): refused
+# without quoting that file's text (its first line was copied into the message), the expected
+# header cut to the echo limit.
+hostile_restart_foreign_monitors_not_quoted() {
+  rst_contact_checkpoint || return 1
+  printf 'root:x:0:0:secret-line:/root:/bin/bash\n' >other.txt
+  rm ck/monitors.csv && ln -s "$PWD/other.txt" ck/monitors.csv
+  expect_exit 1 "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.08 --restart ck/checkpoint.h5 \
+    --output o || return 1
+  expect_short_err 1 && expect_err "ck/monitors\.csv:1: not a monitors file: its header's column 1 is not 'step'" ||
+    return 1
+  if grep -q "secret-line" last.err; then echo "the file's text was quoted"; return 1; fi
+  [ "$(wc -c <last.err)" -lt 400 ] || { echo "too long: $(wc -c <last.err) bytes"; return 1; }
 }

@@ -9,7 +9,8 @@ Structure (checksum kept; refused before any dataset is read): u-2d (u as N x 3)
 (u as 2 x 500000 zeros), scalars-2d (1 x 8), active-2d (1 x 5n), checksum-array (two values),
 model-array (two strings).
 Contents (checksum written again): duplicate-entries (every active entry twice), xi-outside
-(every entry at xi = eta = -3), time-early (t = 1e-300), time-late (t + dt / 2), dt-huge
+(every entry at xi = eta = -3), facet-zero (every entry on facet 0), facet-rotated (each entry
+on the next entry's facet), time-early (t = 1e-300), time-late (t + dt / 2), dt-huge
 (dt = 1e300), dt-above-nominal (dt = 2 nominal dt)."""
 import sys
 
@@ -58,6 +59,12 @@ def contents(f, edit):
         assert len(active) > 0, 'no active entry'
         a = active.reshape(-1, 5)
         a[:, 3:5] = -3
+        replace(f, 'active', a.ravel())
+    elif edit in ('facet-zero', 'facet-rotated'):
+        assert len(active) > 1, 'fewer than two active entries'
+        a = active.reshape(-1, 5)
+        # every entry on facet 0, or on the facet of the next entry; xi kept, inside the facet
+        a[:, 2] = 0 if edit == 'facet-zero' else np.roll(a[:, 2], 1)
         replace(f, 'active', a.ravel())
     elif edit in ('time-early', 'time-late', 'dt-huge', 'dt-above-nominal'):
         if edit == 'time-early':

@@ -58,6 +58,11 @@ void position_roundoff(Refs refs, Positions x1, Values r);
 /// docs/THEORY.md §7.2: 1 where the slave lies behind its facet at x deeper than the round-off.
 void behind_facets(Refs refs, Positions x, Kokkos::View<int*, ExecSpace> behind);
 
+/// d(k, 0): the distance at x from entry k's slave to its facet's point at xi; d(k, 1): the
+/// facet's longest edge (a restored entry lies at its point: full stick keeps the offset of its
+/// activation, frictionless and slip entries their gap, each within the activation's bounds).
+void facet_point_distances(Refs refs, Positions x, Kokkos::View<double* [2], ExecSpace> d);
+
 /// §4.1, docs/THEORY.md §7.2: the move d(k) that puts entry k's slave where its stick
 /// constraint wants it at x1: x_{s,n} + N (x_{m,n+1} - x_{m,n}) (the offset of t_n kept; exactly
 /// x_{s,n} where the masters did not move), or N x_{m,n+1} for a closing entry; returns the

@@ -125,6 +125,11 @@ class Contact {
   bool closes_gaps() const;
   bool closes(const Active& a) const { return pairs_[a.pair].close_gap && !a.keep_gap; }
 
+  /// Per entry of `active` (mine): the distance at x from its slave to its facet's point at
+  /// xi, and the facet's longest edge (facet_point_distances; select first).
+  std::vector<std::array<double, 2>> facet_point_distances(Positions x,
+                                                           const std::vector<Active>& active) const;
+
   /// g_N at n+1 of the active entries on their facet's plane: global min and max.
   void gap_range(Positions x1, const std::vector<Active>& active, double& lo, double& hi) const;
 
