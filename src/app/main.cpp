@@ -82,11 +82,12 @@ int main(int argc, char** argv) {
     const auto s = emc::app::run(opt, comm);
     if (root) {
       std::printf(
-          "emcontact: %lld tets, %lld nodes on %d rank(s); setup %.3f s; %ld steps to "
+          "emcontact: %lld tets, %lld nodes on %d rank(s); setup %.3f s; %ld steps%s to "
           "t = %.6g in %.3f s (%.4f s/step, %.2f Newton iterations/step); total %.3f "
-          "s; max |%s-E0|/|E0| = %.3e (|E0| or, if 0, max K+W+|Pi|); output in %s\n",
-          s.tets, s.nodes, comm->getSize(), s.setup_seconds, s.steps, s.time, s.stepping_seconds,
-          s.steps ? s.stepping_seconds / s.steps : 0.0,
+          "s; max |%s-E0|/max(K+W+|Pi|) = %.3e; output in %s\n",
+          s.tets, s.nodes, comm->getSize(), s.setup_seconds, s.steps,
+          s.first_step > 0 ? (" from step " + std::to_string(s.first_step)).c_str() : "", s.time,
+          s.stepping_seconds, s.steps ? s.stepping_seconds / s.steps : 0.0,
           s.steps ? double(s.newton_iterations) / s.steps : 0.0, wall.totalElapsedTime(true),
           s.dissipates ? "E+D" : "E", s.max_energy_error, s.output_dir.c_str());
       if (s.contact_nodes > 0)

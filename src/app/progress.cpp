@@ -13,7 +13,7 @@ void Progress::update(long step, double t, double dt, int newton, double energy_
   char buf[200];
   const int n = std::snprintf(buf, sizeof buf,
                               "step %7ld  t = %-11.5g (%5.1f%%)  dt = %-9.3g  newton %2d  "
-                              "|%s-E0|/|E0| = %-9.2e  contacts %d",
+                              "|%s-E0|/(K+W+|Pi|) = %-9.2e  contacts %d",
                               step, t, 100.0 * t / end_, dt, newton, dissipates ? "E+D" : "E",
                               energy_error, active);
   if (tty_) {

@@ -150,10 +150,10 @@ Writers make_writers(const fem::Discretization& disc, const OutputDirectory& dir
   return w;
 }
 
-/// The energy scale of the relative energy error: |E0|, or while E0 is zero (a body starting
-/// at rest under a load) the largest K + W + |Pi| so far.
-double energy_scale(const output::MonitorRow& r0, const output::MonitorRow& r, double scale) {
-  if (r0.total != 0) return std::fabs(r0.total);
+/// The energy scale of the relative energy error: the largest K + W + |Pi| so far, the scale of
+/// the round-off of E = K + W + Pi (and the monitors' checks' scale). |E0| is not: it is 0, or
+/// nearly, for a body at rest on a slope (potential and elastic energy cancelling).
+double energy_scale(const output::MonitorRow& r, double scale) {
   return std::max({scale, r.kinetic + r.elastic + std::fabs(r.potential), 1e-300});
 }
 
@@ -301,7 +301,8 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   } else if (root) {
     w.monitors->append(row0);
   }
-  double escale = energy_scale(row0, row0, 0.0);
+  double escale = energy_scale(row0, 0.0);
+  sum.first_step = state.step;  // the checkpoint's step after --restart, else 0
   if (opt.restart.empty()) w.fields_frame(disc, state);
   const int checkpoint_every = out.checkpoint_every;
   signals_stop_time_loop();
@@ -322,7 +323,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
         stop_on_sigterm();
       }
       const auto row = monitor_row(disc, state, rep);
-      escale = energy_scale(row0, row, escale);
+      escale = energy_scale(row, escale);
       // docs/THEORY.md §11.2: with friction E + D is what is conserved (D = 0 without it)
       const double err =
           std::fabs(row.total + row.dissipated - row0.total - row0.dissipated) / escale;
@@ -364,7 +365,7 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   progress.finish();
   if (root) w.monitors->flush(true);
   if (root && out.plot) plot_monitors(output_dir.dir());
-  sum.steps = state.step;
+  sum.steps = state.step - sum.first_step;  // the steps this run computed
   sum.time = state.t;
   if (sim->contact) {  // docs/THEORY.md §8: what each rank holds and receives of contact
     const auto& t = sim->contact->nodes().traffic();

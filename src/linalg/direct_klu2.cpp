@@ -18,7 +18,7 @@ void DirectKlu2::solve(const Teuchos::RCP<const Matrix>& A, const Vector& b, Vec
   if (A->getComm()->getSize() > 1)
     throw InputError(
         "Solver/Linear/type: klu2 runs on one rank only (Debian's Amesos2 KLU2 gives wrong "
-        "answers on 2+ ranks); allowed on N ranks: gmres, cg");
+        "answers on 2+ ranks); allowed on N ranks: gmres, cg, mumps");
   auto xp = Teuchos::rcpFromRef(x);
   auto bp = Teuchos::rcpFromRef(b);
   if (!s_->solver.is_null() && A->getCrsGraph().get() == s_->graph.get()) {

@@ -90,7 +90,7 @@ LinearSolver::LinearSolver(const Teuchos::ParameterList& linear, RCP<const Comm>
     throw InputError(
         "Solver/Linear/type = klu2 runs on one rank only (Debian's Amesos2 KLU2 is wrong on "
         "2+ ranks); allowed on " +
-        std::to_string(comm->getSize()) + " ranks: gmres, cg");
+        std::to_string(comm->getSize()) + " ranks: gmres, cg, mumps");
   if (type_ == SolverType::umfpack) direct_ = std::make_shared<DirectUmfpack>(comm);
   if (!direct()) check_pass_through(comm, file);
 }

@@ -253,12 +253,22 @@ StepReport Stepper::advance() {
       continue;
     }
     ++rep.cuts;
+    if (rep.last_failure.find("crossed a master facet") != std::string::npos) {
+      char at[96];
+      std::snprintf(at, sizeof at, "at step %ld with dt = %.3g, ", s_.step + 1, s_.dt);
+      crossing_ = at + rep.last_failure;
+    }
     if (s_.dt < dt_ / std::ldexp(1.0, max_cuts_) * 1.5) {
       char buf[256];
       std::snprintf(buf, sizeof buf,
                     "step %ld at t = %.6g could not be solved even with dt = %.3g (%d halvings "
                     "of dt = %.3g, Time/max step cuts): ",
                     s_.step + 1, s_.t, s_.dt, max_cuts_, dt_);
+      // an element inverted after slave nodes crossed the master at a larger step: the cause
+      // is the crossing (an impact too fast for Time/dt), named with it
+      if (rep.last_failure.rfind("element ", 0) == 0 && !crossing_.empty())
+        throw RunError(buf + rep.last_failure + ", after the steps had been cut because " +
+                       crossing_);
       throw RunError(buf + rep.last_failure);
     }
     s_.dt /= 2;

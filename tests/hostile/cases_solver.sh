@@ -231,3 +231,16 @@ hostile_mpmd_other_input_files_run_rank0s() {
   expect_exit_within 120 0 "${MPIRUN[@]}" -np 2 -wdir "$PWD/r0" "$EMC" in.xml --output "$PWD/same"
   cmp same/monitors.csv mp/monitors.csv
 }
+
+# A one-rank direct solver on 3 ranks is refused listing every solver that runs there (klu2's
+# refusal left out mumps, which runs on any rank count); the one it lists does run.
+hostile_one_rank_solver_lists_what_runs_on_three_ranks() {
+  emc_good_input in.xml
+  local t
+  for t in klu2 umfpack; do
+    expect_exit 1 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set "Solver/Linear/type=$t" --output o || return 1
+    expect_err "type = $t runs on one rank only .*allowed on 3 ranks: gmres, cg, mumps" || return 1
+  done
+  expect_exit 0 "${MPIRUN[@]}" -np 3 "$EMC" in.xml --set Output/progress=false \
+    --set Solver/Linear/type=mumps --output o || return 1
+}

@@ -28,11 +28,13 @@ std::string version();
 std::string early_option(int argc, char** argv);
 
 struct Summary {
-  long steps = 0;
+  long steps = 0;       ///< computed by this run (after --restart: since the checkpoint)
+  long first_step = 0;  ///< the step it started from (the checkpoint's, or 0)
   double time = 0;
-  int newton_iterations = 0;
-  double max_energy_error = 0;  ///< max_n |E_n + D_n - E_0 - D_0| / |E_0| (D: friction's work)
-  bool dissipates = false;      ///< friction dissipated energy in the run (D changed)
+  long long newton_iterations = 0;
+  /// max_n |E_n + D_n - E_0 - D_0| / max_n (K + W + |Pi|)_n (D: friction's work)
+  double max_energy_error = 0;
+  bool dissipates = false;  ///< friction dissipated energy in the run (D changed)
   std::string output_dir;
   long long tets = 0, nodes = 0;
   double setup_seconds = 0, stepping_seconds = 0;  ///< wall time before / in the time loop

@@ -109,6 +109,7 @@ class Stepper {
   Teuchos::RCP<Vector> closure_p_;                  ///< the step's impulse direction (§7.4)
   contact::ClosureWork closure_work_;               ///< the step's contact work W_c (§7.4)
   double dissipated_ = 0;                           ///< the solved step's friction work (§11)
+  std::string crossing_;  ///< the run's last step cut for a crossing, for a later failure's message
 
   void start_iterate(double h, bool no_contact, Vector& u1) const;
   void check_step_size(double h) const;
