@@ -120,7 +120,8 @@ bool is_out_of_memory(const std::exception& e) {
   // Kokkos 3.4 turns its allocation failure into a std::runtime_error with this text
   const std::string what = e.what();
   return what.find("failed to allocate") != std::string::npos ||
-         what.find("Allocation of size") != std::string::npos;
+         what.find("Allocation of size") != std::string::npos ||
+         what.find(": std::bad_alloc") != std::string::npos;  // one with its context
 }
 
 std::string out_of_memory_message(const std::exception& e) {
@@ -135,7 +136,8 @@ std::string out_of_memory_message(const std::exception& e) {
   // where it happened, if a caller said so ("step 1 ...: linear solver (...) failed: Kokkos
   // failed to allocate ..."), and the last checkpoint
   const std::string what = e.what();
-  const auto kokkos = what.find("Kokkos failed to allocate");
+  auto kokkos = what.find("Kokkos failed to allocate");
+  if (kokkos == std::string::npos) kokkos = what.find(": std::bad_alloc");
   std::string context = kokkos != std::string::npos ? what.substr(0, kokkos) : "";
   while (!context.empty() && (context.back() == ' ' || context.back() == ':')) context.pop_back();
   if (!context.empty()) context = " (" + context + ")";

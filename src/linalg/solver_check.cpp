@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <new>
 #include <regex>
 #include <sstream>
 
+#include "emcontact/error.hpp"
 #include "emcontact/input/echo.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 
@@ -123,6 +125,8 @@ RCP<Matrix> LinearSolver::check_preconditioner(const RCP<const Comm>& comm,
   const std::string prec = muelu ? "MueLu" : "Ifpack2";
   try {
     build_preconditioner(A, &unused, &ignored);
+  } catch (const std::bad_alloc&) {  // out of memory, not a refused parameter
+    throw Error(where + "the trial of Solver/Linear/" + prec + " at setup: std::bad_alloc");
   } catch (const std::exception& e) {
     throw InputError(where + "parameter \"Solver/Linear/" + prec + "\": " + prec +
                      " refused it: " + one_line(e.what()) + "; allowed: parameters " + prec +
@@ -187,6 +191,10 @@ void LinearSolver::check_pass_through(const RCP<const Comm>& comm, const std::st
     bool converged = false;
     std::string message;
     belos_solve(A, b, x, tol_, converged, message);
+  } catch (const std::bad_alloc&) {  // out of memory (Num Blocks x rows), not a refused value
+    prec_ = Teuchos::null;
+    throw Error(where + "the trial solve of Solver/Linear/Belos (" + name +
+                ") at setup: std::bad_alloc");
   } catch (const std::exception& e) {
     prec_ = Teuchos::null;
     throw InputError(where + "parameter \"Solver/Linear/Belos\": Belos " + name +

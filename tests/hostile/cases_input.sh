@@ -233,6 +233,7 @@ hostile_long_mesh_file_name_shortened() {
 
 # MueLu printed the edit distance of its 190 valid names to a typo on stdout
 hostile_muelu_typo_quiet() {
+  # needs MueLu
   emc_good_input in.xml
   expect_exit 1 "$EMC" in.xml --set Solver/Linear/preconditioner=muelu \
     "--set=Solver/Linear/MueLu/smother: type=RELAXATION" --output out
