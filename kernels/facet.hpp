@@ -35,6 +35,29 @@ KOKKOS_INLINE_FUNCTION void facet_shape(const double xi[2], double N[3]) {
   N[2] = xi[1];
 }
 
+/// docs/THEORY.md §2.2: how far y lies from the facet's point x(xi) = sum_a N_a(xi) xm_a
+/// (`distance`), and the facet's longest edge (`longest_edge`), the length its tolerances scale
+/// with. A restored active entry must lie at its facet point (the restart's check).
+KOKKOS_INLINE_FUNCTION void facet_point_distance(const double y[3], const double xm[3][3],
+                                                 const double xi[2], double& distance,
+                                                 double& longest_edge) {
+  double N[3];
+  facet_shape(xi, N);
+  double r2 = 0, h2 = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double p = N[0] * xm[0][i] + N[1] * xm[1][i] + N[2] * xm[2][i];
+    r2 += (y[i] - p) * (y[i] - p);
+  }
+  for (int e = 0; e < 3; ++e) {
+    double l2 = 0;
+    for (int i = 0; i < 3; ++i)
+      l2 += (xm[(e + 1) % 3][i] - xm[e][i]) * (xm[(e + 1) % 3][i] - xm[e][i]);
+    h2 = l2 > h2 ? l2 : h2;
+  }
+  distance = kernels::sqrt(r2);
+  longest_edge = kernels::sqrt(h2);
+}
+
 /// How far xi lies outside the facet in barycentric terms: -min(N) (<= 0 inside).
 KOKKOS_INLINE_FUNCTION double facet_outside(const double xi[2]) {
   const double a = 1 - xi[0] - xi[1];

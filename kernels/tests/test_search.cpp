@@ -160,6 +160,57 @@ TYPED_TEST(Search, LocateAllMatchesBruteForce) {
   }
 }
 
+// facet_point_distance on the backend against the closed form: a point at height h above the
+// facet point of xi (any xi, also outside the facet) lies h from it, whatever the facet's
+// orientation; the longest edge is the largest of the three edge lengths.
+TYPED_TEST(Search, FacetPointDistanceIsTheHeightAboveThePoint) {
+  using E = TypeParam;
+  constexpr int n = 64;
+  // per case: y (3), xm (9), xi (2), then the heights h; a right triangle of legs 2 and 1,
+  // rotated about z by th and tilted about x by th / 2, xi from outside to inside the facet
+  Kokkos::View<double* [14], Kokkos::HostSpace> in("in", n);
+  std::vector<double> heights(n);
+  for (int q = 0; q < n; ++q) {
+    const double th = 0.1 * q, c = std::cos(th), s = std::sin(th);
+    const double ct = std::cos(0.5 * th), st = std::sin(0.5 * th);
+    const double legs[3][2] = {{0, 0}, {2, 0}, {0, 1}};
+    double xm[3][3];
+    for (int v = 0; v < 3; ++v) {
+      const double xr = c * legs[v][0] - s * legs[v][1], yr = s * legs[v][0] + c * legs[v][1];
+      xm[v][0] = xr + 0.3;
+      xm[v][1] = ct * yr - 0.2;
+      xm[v][2] = st * yr + 0.1;
+    }
+    const double xi[2] = {-0.5 + 0.03 * q, 0.8 - 0.02 * q};
+    const k::Facet f = k::facet(xm);
+    double N[3];
+    k::facet_shape(xi, N);
+    heights[q] = 0.01 * (q - 20);
+    for (int i = 0; i < 3; ++i)
+      in(q, i) = N[0] * xm[0][i] + N[1] * xm[1][i] + N[2] * xm[2][i] + heights[q] * f.n[i];
+    for (int v = 0; v < 3; ++v)
+      for (int i = 0; i < 3; ++i) in(q, 3 + 3 * v + i) = xm[v][i];
+    in(q, 12) = xi[0];
+    in(q, 13) = xi[1];
+  }
+  auto din = Kokkos::create_mirror_view_and_copy(typename E::memory_space(), in);
+  Kokkos::View<double* [2], typename E::memory_space> out("out", n);
+  Kokkos::parallel_for(
+      "emcontact::kernels::test::facet_point_distance", Kokkos::RangePolicy<E>(0, n),
+      KOKKOS_LAMBDA(const int q) {
+        double y[3], xm[3][3], xi[2] = {din(q, 12), din(q, 13)};
+        for (int i = 0; i < 3; ++i) y[i] = din(q, i);
+        for (int v = 0; v < 3; ++v)
+          for (int i = 0; i < 3; ++i) xm[v][i] = din(q, 3 + 3 * v + i);
+        k::facet_point_distance(y, xm, xi, out(q, 0), out(q, 1));
+      });
+  auto host = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
+  for (int q = 0; q < n; ++q) {
+    EXPECT_NEAR(host(q, 0), std::fabs(heights[q]), 1e-14) << q;
+    EXPECT_NEAR(host(q, 1), std::sqrt(5.0), 1e-14) << q;  // the hypotenuse
+  }
+}
+
 // Facets of every orientation (a sphere, its poles degenerate): the brute-force facet.
 TYPED_TEST(Search, SphereMatchesBruteForce) {
   using E = TypeParam;

@@ -94,25 +94,10 @@ void facet_point_distances(Refs refs, Positions x, Kokkos::View<double* [2], Exe
       "emcontact::contact::facet_point_distances", Policy(0, count(refs)),
       KOKKOS_LAMBDA(const int k) {
         const ActiveRef a = refs(k);
-        double xm[3][3], y[3], N[3];
+        double xm[3][3], y[3];
         facet_at(x, a, xm);
         slave_at(x, a, y);
-        kernels::facet_shape(a.xi, N);
-        double r2 = 0, h2 = 0;
-        for (int i = 0; i < 3; ++i) {
-          const double p = N[0] * xm[0][i] + N[1] * xm[1][i] + N[2] * xm[2][i];
-          r2 += (y[i] - p) * (y[i] - p);
-        }
-        for (int e = 0; e < 3; ++e) {
-          double l2 = 0;
-          for (int i = 0; i < 3; ++i) {
-            const double t = xm[(e + 1) % 3][i] - xm[e][i];
-            l2 += t * t;
-          }
-          h2 = l2 > h2 ? l2 : h2;
-        }
-        d(k, 0) = kernels::sqrt(r2);
-        d(k, 1) = kernels::sqrt(h2);
+        kernels::facet_point_distance(y, xm, a.xi, d(k, 0), d(k, 1));
       });
 }
 
