@@ -151,4 +151,14 @@ TetPattern<MemorySpace>::TetPattern(const ExecutionSpace& space,
   crs_detail::build(space, tets, num_nodes, matrix, block);
 }
 
+/// values(at(k)) += c * from(k) for every k: entries of one matrix added into another's values at
+/// their positions there (each at its own position: no two adds meet), in a loop labelled label.
+template <class ExecutionSpace, class Values, class At, class From>
+void add_at(const ExecutionSpace& space, const char* label, const Values& values, const At& at,
+            double c, const From& from) {
+  Kokkos::parallel_for(
+      label, range(space, from.extent(0)),
+      KOKKOS_LAMBDA(const int k) { values(at(k)) += c * from(k); });
+}
+
 }  // namespace emc::kernels

@@ -84,13 +84,27 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame&
     }
 }
 
+/// Strain energy density W(E) of each material.
+KOKKOS_INLINE_FUNCTION double energy(const Lame& m, const double E[3][3]) {
+  return svk_energy(m, E);
+}
+/// |lambda| + 2 mu of the small-strain limit of each material (the scale of its stiffness).
+KOKKOS_INLINE_FUNCTION double stiffness(const Lame& m) {
+  return kernels::fabs(m.lambda) + 2 * m.mu;
+}
+/// Second Piola-Kirchhoff stress S(E) of each material.
+KOKKOS_INLINE_FUNCTION void stress(const Lame& m, const double E[3][3], double S[3][3]) {
+  svk_stress(m, E, S);
+}
+
 /// Strain energy V_e W(E(u)) of the element.
-KOKKOS_INLINE_FUNCTION double tet4_energy(const double G[4][3], double Ve, const Lame& m,
+template <class Material>
+KOKKOS_INLINE_FUNCTION double tet4_energy(const double G[4][3], double Ve, const Material& m,
                                           const double u[4][3]) {
   double H[3][3], E[3][3];
   displacement_gradient(G, u, H);
   green_strain(H, E);
-  return Ve * svk_energy(m, E);
+  return Ve * energy(m, E);
 }
 
 /// det F of the element at u (> 0 unless the element is inverted).

@@ -51,8 +51,9 @@ struct Monitors {
 /// has massless nodes (docs/THEORY.md §6.8): its kinetic energy, momenta and mass moment come
 /// from the moved mass (fem::Discretization::monitors), its mass, elastic and potential energy
 /// from here.
+template <class Material>
 KOKKOS_INLINE_FUNCTION void monitors_tet4(const double X[4][3], const double G[4][3], double Ve,
-                                          const Lame& m, double rho, const double grav[3],
+                                          const Material& m, double rho, const double grav[3],
                                           const double u[4][3], const double V[4][3], Monitors& out,
                                           bool moved = false) {
   double p[4][3] = {};

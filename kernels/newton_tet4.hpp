@@ -25,10 +25,11 @@ struct ElementState {
 /// size after about 100 steps from the start, as |u| / |u_{n+1} - u_n| grows with the steps).
 /// moved: the element has massless nodes (docs/THEORY.md §6.8), its mass term is assembled with
 /// the moved mass (fem::Discretization) and left out here.
-KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Lame& m, double rho,
-                                        const double grav[3], Integrator integ, double dt,
-                                        const ElementState& s, double r[12], double (*A)[12],
-                                        double* scale, bool moved = false) {
+template <class Material>
+KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const Material& m,
+                                        double rho, const double grav[3], Integrator integ,
+                                        double dt, const ElementState& s, double r[12],
+                                        double (*A)[12], double* scale, bool moved = false) {
   em_tet4(G, Ve, m, integ, s.u0, s.u1, r, A);  // r = f_int for now
   double du[4][3], Mdu[4][3] = {}, MV[4][3] = {};
   for (int a = 0; a < 4; ++a)
@@ -45,7 +46,7 @@ KOKKOS_INLINE_FUNCTION void newton_tet4(const double G[4][3], double Ve, const L
         kernels::sqrt(s.u1[a][0] * s.u1[a][0] + s.u1[a][1] * s.u1[a][1] + s.u1[a][2] * s.u1[a][2]);
     ug += un * gnorm[a];
   }
-  const double stiff = 1e-3 * Ve * (kernels::fabs(m.lambda) + 2 * m.mu) * ug;
+  const double stiff = 1e-3 * Ve * stiffness(m) * ug;
   double ua[4][3], Mua[4][3] = {};  // M |u_{n+1}|: M's entries are >= 0 (moved: M' adds it)
   for (int a = 0; a < 4; ++a)
     for (int i = 0; i < 3; ++i) ua[a][i] = kernels::fabs(s.u1[a][i]);

@@ -8,7 +8,7 @@
 // hence their sum's last bits, varies from run to run. With a TetColouring the loops run colour
 // by colour with plain adds: the same bits on every host backend and number of threads.
 #include <Kokkos_Core.hpp>
-#include <cstdint>
+#include <algorithm>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -114,8 +114,8 @@ struct TetColouring {
   int chunk = 1, num_tets = 0;
 
   TetColouring() = default;
-  /// Greedy colouring on the host, chunk by chunk: the lowest colour that no chunk holding one
-  /// of its nodes has yet (at most 256 colours).
+  /// Greedy colouring on the host, chunk by chunk in ascending order: the lowest colour that no
+  /// chunk sharing a node with it has yet.
   template <class ExecutionSpace>
   TetColouring(const ExecutionSpace& space, const Tetrahedra<MemorySpace>& tets, int num_nodes,
                int chunk = 64);
@@ -124,6 +124,64 @@ struct TetColouring {
   std::vector<int> order() const;
 };
 
+namespace tet4_detail {
+
+/// The chunks touching every node (CSR: node n's at at[first[n] .. first[n + 1]), each once,
+/// ascending).
+template <class Tets>
+void node_chunks(const Tets& t, int num_nodes, int chunk, std::vector<int>& first,
+                 std::vector<int>& at) {
+  const int ne = static_cast<int>(t.extent(0));
+  std::vector<int> last(num_nodes, -1);  // the last chunk counted at a node
+  first.assign(num_nodes + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<int> next(first.begin(), first.end() - 1);
+    for (int k = 0; k < ne; ++k)
+      for (int a = 0; a < 4; ++a) {
+        const int n = t(k, a);
+        if (last[n] == k / chunk) continue;
+        last[n] = k / chunk;
+        if (pass == 0)
+          ++first[n + 1];
+        else
+          at[next[n]++] = k / chunk;
+      }
+    if (pass == 0) {
+      for (int n = 0; n < num_nodes; ++n) first[n + 1] += first[n];
+      at.resize(first[num_nodes]);
+      std::fill(last.begin(), last.end(), -1);
+    }
+  }
+}
+
+/// The colour of every chunk, greedy in ascending chunk order; colours: how many.
+template <class Tets>
+std::vector<int> greedy_colours(const Tets& t, int num_nodes, int chunk, int& colours) {
+  std::vector<int> first, at;
+  node_chunks(t, num_nodes, chunk, first, at);
+  const int ne = static_cast<int>(t.extent(0)), nc = (ne + chunk - 1) / chunk;
+  std::vector<int> colour(nc, -1), taken;  // taken[c] == j: a neighbour of chunk j has colour c
+  colours = 0;
+  for (int j = 0; j < nc; ++j) {
+    for (int k = j * chunk; k < ne && k < (j + 1) * chunk; ++k)
+      for (int a = 0; a < 4; ++a) {
+        const int n = t(k, a);
+        for (int i = first[n]; i < first[n + 1]; ++i)
+          if (colour[at[i]] >= 0) taken[colour[at[i]]] = j;
+      }
+    int c = 0;
+    while (c < colours && taken[c] == j) ++c;
+    if (c == colours) {
+      taken.push_back(-1);
+      ++colours;
+    }
+    colour[j] = c;
+  }
+  return colour;
+}
+
+}  // namespace tet4_detail
+
 template <class MemorySpace>
 template <class ExecutionSpace>
 TetColouring<MemorySpace>::TetColouring(const ExecutionSpace& space,
@@ -131,28 +189,11 @@ TetColouring<MemorySpace>::TetColouring(const ExecutionSpace& space,
     : chunk(size), num_tets(static_cast<int>(t.extent(0))) {
   check_access<ExecutionSpace, MemorySpace>();
   if (chunk < 1) throw std::invalid_argument("TetColouring: chunk < 1");
-  constexpr int words = 4;  // 256 colours
   space.fence();
   const auto th = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), t);
-  const int nc = (num_tets + chunk - 1) / chunk;
-  std::vector<std::uint64_t> used(words * std::size_t(num_nodes), 0);
-  std::vector<int> colour(nc);
   int colours = 0;
-  for (int j = 0; j < nc; ++j) {
-    const int first = j * chunk, last = first + chunk < num_tets ? first + chunk : num_tets;
-    std::uint64_t taken[words] = {};
-    for (int k = first; k < last; ++k)
-      for (int a = 0; a < 4; ++a)
-        for (int w = 0; w < words; ++w) taken[w] |= used[words * std::size_t(th(k, a)) + w];
-    int c = -1;
-    for (int b = 0; b < 64 * words && c < 0; ++b)
-      if (!((taken[b / 64] >> (b % 64)) & 1)) c = b;
-    if (c < 0) throw std::runtime_error("TetColouring: more than 256 colours");
-    for (int k = first; k < last; ++k)
-      for (int a = 0; a < 4; ++a) used[words * std::size_t(th(k, a)) + c / 64] |= 1ull << (c % 64);
-    colour[j] = c;
-    colours = c + 1 > colours ? c + 1 : colours;
-  }
+  const std::vector<int> colour = tet4_detail::greedy_colours(th, num_nodes, chunk, colours);
+  const int nc = static_cast<int>(colour.size());
   start.assign(colours + 1, 0);
   for (int j = 0; j < nc; ++j) ++start[colour[j] + 1];
   for (int c = 0; c < colours; ++c) start[c + 1] += start[c];
@@ -237,6 +278,10 @@ struct Tangent {
   }
 };
 
+/// A colour's chunks: dynamic schedule (chunks cost alike but threads may not run alike).
+template <class ExecutionSpace>
+using ChunkPolicy = Kokkos::RangePolicy<ExecutionSpace, Kokkos::Schedule<Kokkos::Dynamic>>;
+
 /// body.element<Atomic>(k) for every tet: without a colouring one loop over the tets (atomic
 /// adds, plain on one thread), with one a loop per colour (plain adds).
 template <class ExecutionSpace, class MemorySpace, class Body>
@@ -252,12 +297,48 @@ void for_each_tet(const ExecutionSpace& space, const char* label, const Body& bo
   const int size = colouring->chunk;
   for (int c = 0; c < colouring->colours(); ++c)
     Kokkos::parallel_for(
-        label,
-        Kokkos::RangePolicy<ExecutionSpace>(space, colouring->start[c], colouring->start[c + 1]),
+        label, ChunkPolicy<ExecutionSpace>(space, colouring->start[c], colouring->start[c + 1]),
         KOKKOS_LAMBDA(const int i) {
           const int first = chunks(i) * size, last = first + size < ne ? first + size : ne;
           for (int k = first; k < last; ++k) body.template element<false>(k);
         });
+}
+
+/// The same with body.element<Atomic>(k, mn), which lowers the MinLoc value mn: the smallest
+/// over every tet and its tet (loc -1 if ne = 0). Min is exact: the same whatever the order.
+template <class ExecutionSpace, class MemorySpace, class Body>
+Kokkos::MinLoc<double, int>::value_type reduce_min_tet(const ExecutionSpace& space,
+                                                       const char* label, const Body& body, int ne,
+                                                       const TetColouring<MemorySpace>* colouring) {
+  using MinLoc = Kokkos::MinLoc<double, int>;
+  MinLoc::value_type worst;
+  worst.val = Kokkos::reduction_identity<double>::min();
+  worst.loc = -1;
+  if (!colouring) {
+    constexpr bool atomic = !one_thread<ExecutionSpace>();
+    if (ne > 0)
+      Kokkos::parallel_reduce(
+          label, range(space, ne),
+          KOKKOS_LAMBDA(const int k, MinLoc::value_type& mn) {
+            body.template element<atomic>(k, mn);
+          },
+          MinLoc(worst));
+    return worst;
+  }
+  const auto chunks = colouring->chunks;
+  const int size = colouring->chunk;
+  for (int c = 0; c < colouring->colours(); ++c) {
+    MinLoc::value_type w;
+    Kokkos::parallel_reduce(
+        label, ChunkPolicy<ExecutionSpace>(space, colouring->start[c], colouring->start[c + 1]),
+        KOKKOS_LAMBDA(const int i, MinLoc::value_type& mn) {
+          const int first = chunks(i) * size, last = first + size < ne ? first + size : ne;
+          for (int k = first; k < last; ++k) body.template element<false>(k, mn);
+        },
+        MinLoc(w));
+    if (w.val < worst.val) worst = w;
+  }
+  return worst;
 }
 
 }  // namespace tet4_detail

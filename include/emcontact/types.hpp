@@ -18,6 +18,7 @@ using GO = long long;
 using Map = Tpetra::Map<LO, GO>;
 using Node = Map::node_type;
 using ExecSpace = Node::execution_space;
+using MemSpace = Node::memory_space;
 using Graph = Tpetra::CrsGraph<LO, GO, Node>;
 using FEGraph = Tpetra::FECrsGraph<LO, GO, Node>;
 using Matrix = Tpetra::CrsMatrix<Scalar, LO, GO, Node>;

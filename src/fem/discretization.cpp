@@ -21,9 +21,9 @@ Discretization::Discretization(const Model& model, Partition part, RCP<const Com
   build_element_data();
   build_moved_mass();
   build_graph();
-  const auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ev_.node_lid);
-  colouring_ =
-      colour_chunks(lid, static_cast<int>(overlap_->getNodeNumElements() / 3), assembly_chunk);
+  colouring_ = kernels::TetColouring<MemSpace>(ExecSpace(), tets_.nodes,
+                                               static_cast<int>(overlap_->getNodeNumElements() / 3),
+                                               assembly_chunk);
 }
 
 void Discretization::build_maps() {
@@ -57,23 +57,15 @@ Teuchos::RCP<Vector> Discretization::reference_positions() const {
 
 void Discretization::build_element_data() {
   const int ne = static_cast<int>(part_.my_tets.size());
-  auto& ev = ev_;
-  ev.X = decltype(ev.X)("emc::X", ne);
-  ev.G = decltype(ev.G)("emc::G", ne);
-  ev.Ve = decltype(ev.Ve)("emc::Ve", ne);
-  ev.lambda = decltype(ev.lambda)("emc::lambda", ne);
-  ev.mu = decltype(ev.mu)("emc::mu", ne);
-  ev.rho = decltype(ev.rho)("emc::rho", ne);
-  ev.node_lid = decltype(ev.node_lid)("emc::node_lid", ne);
+  tets_ = Elements(ne);
+  auto& ev = tets_;
   auto X = Kokkos::create_mirror_view(ev.X);
   auto G = Kokkos::create_mirror_view(ev.G);
   auto Ve = Kokkos::create_mirror_view(ev.Ve);
-  auto lam = Kokkos::create_mirror_view(ev.lambda);
-  auto mu = Kokkos::create_mirror_view(ev.mu);
+  auto mat = Kokkos::create_mirror_view(ev.material);
   auto rho = Kokkos::create_mirror_view(ev.rho);
-  auto lid = Kokkos::create_mirror_view(ev.node_lid);
-  ev.massless_nodes = decltype(ev.massless_nodes)("emc::massless_nodes", ne);
-  auto light = Kokkos::create_mirror_view(ev.massless_nodes);
+  auto lid = Kokkos::create_mirror_view(ev.nodes);
+  auto light = Kokkos::create_mirror_view(ev.massless);
   for (int k = 0; k < ne; ++k) {
     const int e = part_.my_tets[k];
     double x[4][3], g[4][3] = {};  // zero where tet_gradients leaves it (a flat tet, refused)
@@ -91,25 +83,22 @@ void Discretization::build_element_data() {
     for (int a = 0; a < 4; ++a)
       for (int i = 0; i < 3; ++i) G(k, a, i) = g[a][i];
     const Body& b = model_.bodies[model_.body_of_tet[e]];
-    const auto l = kernels::lame(b.young, b.poisson);
-    lam(k) = l.lambda;
-    mu(k) = l.mu;
+    mat(k) = kernels::lame(b.young, b.poisson);
     rho(k) = b.density;
   }
   Kokkos::deep_copy(ev.X, X);
   Kokkos::deep_copy(ev.G, G);
   Kokkos::deep_copy(ev.Ve, Ve);
-  Kokkos::deep_copy(ev.lambda, lam);
-  Kokkos::deep_copy(ev.mu, mu);
+  Kokkos::deep_copy(ev.material, mat);
   Kokkos::deep_copy(ev.rho, rho);
-  Kokkos::deep_copy(ev.node_lid, lid);
-  Kokkos::deep_copy(ev.massless_nodes, light);
+  Kokkos::deep_copy(ev.nodes, lid);
+  Kokkos::deep_copy(ev.massless, light);
 }
 
 void Discretization::build_graph() {
   const int ne = static_cast<int>(part_.my_tets.size());
   const int nn = static_cast<int>(overlap_->getNodeNumElements() / 3);
-  auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), ev_.node_lid);
+  auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), tets_.nodes);
   // node adjacency from my elements: sorted unique (row, col) node pairs
   std::vector<std::pair<int, int>> pairs;
   pairs.reserve(16 * static_cast<std::size_t>(ne));
@@ -156,15 +145,15 @@ void Discretization::build_graph() {
   }
   graph_->endAssembly();
 
-  ev_.col_lid = decltype(ev_.col_lid)("emc::col_lid", ne);
-  auto col = Kokkos::create_mirror_view(ev_.col_lid);
+  columns_ = decltype(columns_)("emc::tet_columns", ne);
+  auto col = Kokkos::create_mirror_view(columns_);
   auto colmap = graph_->getColMap();
   for (int k = 0; k < ne; ++k)
     for (int a = 0; a < 4; ++a) {
       const GO node = overlap_->getGlobalElement(3 * lid(k, a)) / 3;
       for (int c = 0; c < 3; ++c) col(k, 3 * a + c) = colmap->getLocalElement(dof_gid(node, c));
     }
-  Kokkos::deep_copy(ev_.col_lid, col);
+  Kokkos::deep_copy(columns_, col);
 }
 
 void Discretization::to_overlap(const Vector& owned, Vector& overlap) const {

@@ -13,34 +13,12 @@
 
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
-#include "emcontact/fem/element_loop.hpp"
+#include "emcontact/views.hpp"
 #include "kernels/mass_tet4.hpp"
 #include "kernels/tet4.hpp"
 
 namespace emc::fem {
 namespace {
-
-using ConstDev =
-    decltype(std::declval<const Vector&>().getLocalViewDevice(Tpetra::Access::ReadOnly));
-using Dev = decltype(std::declval<Vector&>().getLocalViewDevice(Tpetra::Access::ReadWrite));
-
-/// One element's M_e v_e added into the overlap rows (the elements with massless nodes add theirs
-/// through the moved mass).
-struct TetMass {
-  ElementViews ev;
-  ConstDev v;
-  Dev Mv;
-
-  template <bool Atomic>
-  KOKKOS_INLINE_FUNCTION void element(const int k) const {
-    if (ev.massless(k)) return;
-    double vk[4][3], pk[4][3];
-    ev.gather(v, k, vk);
-    kernels::mass_times(ev.rho(k), ev.Ve(k), vk, pk);
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) scatter_add<Atomic>(Mv(3 * ev.node_lid(k, a) + i, 0), pk[a][i]);
-  }
-};
 
 /// docs/THEORY.md §6.8: an affine fit is taken from the massive nodes within r edges of the
 /// massless node, r the smallest of 1 .. kFirstRings whose fit has a Lebesgue constant
@@ -355,13 +333,8 @@ void Discretization::add_moved_mass(const FEMatrix::local_matrix_device_type& lc
       }
     moved_->offsets = Kokkos::create_mirror_view_and_copy(ExecSpace(), off);
   }
-  const auto off = moved_->offsets;
-  const auto vals = lcl.values;
-  const auto mvals = lM.values;
-  // every entry of M' has its own position: no two adds meet
-  Kokkos::parallel_for(
-      "emcontact::fem::moved_mass", Kokkos::RangePolicy<ExecSpace>(0, mvals.extent(0)),
-      KOKKOS_LAMBDA(const int k) { vals(off(k)) += c * mvals(k); });
+  kernels::add_at(ExecSpace(), "emcontact::fem::moved_mass", lcl.values, moved_->offsets, c,
+                  lM.values);
 }
 
 void Discretization::moved_mass_residual(const Vector& u0, const Vector& V0, const Vector& u1,
@@ -414,11 +387,7 @@ void Discretization::apply_mass(const Vector& v, Vector& Mv) const {
   auto vo = new_overlap_vector();
   to_overlap(v, *vo);
   Vector mo(overlap_);
-  {
-    const TetMass f{ev_, vo->getLocalViewDevice(Tpetra::Access::ReadOnly),
-                    mo.getLocalViewDevice(Tpetra::Access::ReadWrite)};
-    for_each_element("emcontact::fem::mass_tet4", f, colouring_, model_.scatter, ev_.size());
-  }
+  kernels::mass_tet4_apply(ExecSpace(), tets_, read_column(*vo), write_column(mo), loops());
   Mv.putScalar(0.0);
   Mv.doExport(mo, *exporter_, Tpetra::ADD);
   if (moved_) moved_->M->apply(v, Mv, Teuchos::NO_TRANS, 1.0, 1.0);

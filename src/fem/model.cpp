@@ -6,9 +6,20 @@
 #include <cmath>
 
 #include "emcontact/error.hpp"
-#include "kernels/tet4.hpp"
+#include "emcontact/types.hpp"
+#include "kernels/tet4_loops.hpp"
 
 namespace emc::fem {
+
+Scatter resolve_scatter(ScatterChoice choice) {
+  // auto: atomic adds in the Serial backend, where they are plain adds in loop order
+  // (reproducible, and faster: perf/README.md "OpenMP threads"); the coloured loops on a threaded
+  // backend, where threads would reorder the adds and where an atomic add stays a locked
+  // instruction even on one thread (3-4x slower than the coloured loops there)
+  if (choice == ScatterChoice::automatic)
+    return kernels::one_thread<ExecSpace>() ? Scatter::atomic : Scatter::coloured;
+  return choice == ScatterChoice::coloured ? Scatter::coloured : Scatter::atomic;
+}
 
 namespace {
 

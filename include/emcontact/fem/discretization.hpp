@@ -6,11 +6,10 @@
 #include <map>
 #include <vector>
 
-#include "emcontact/fem/colouring.hpp"
 #include "emcontact/fem/model.hpp"
 #include "emcontact/fem/partition.hpp"
 #include "emcontact/types.hpp"
-#include "kernels/monitors.hpp"
+#include "kernels/tet4_elements.hpp"
 
 namespace emc::fem {
 
@@ -19,30 +18,9 @@ inline GO dof_gid(long long node, int c) {
   return 3 * node + c;
 }
 
-/// Per local element data in Kokkos views, copied by value into kernels (never `this`).
-struct ElementViews {
-  Kokkos::View<double*[4][3], ExecSpace> X, G;  ///< reference coordinates, shape gradients
-  Kokkos::View<double*, ExecSpace> Ve, lambda, mu, rho;
-  Kokkos::View<int* [4], ExecSpace> node_lid;  ///< node index in the overlap map (dof 3k+c)
-  Kokkos::View<int* [12], ExecSpace> col_lid;  ///< dof columns in the graph's column map
-  /// bit a set: the element's node a is massless (docs/THEORY.md §6.8; 0 for every element
-  /// when no pair asks for it)
-  Kokkos::View<int*, ExecSpace> massless_nodes;
-
-  int size() const { return static_cast<int>(Ve.extent(0)); }
-  KOKKOS_INLINE_FUNCTION void gradients(int k, double Gk[4][3]) const {
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) Gk[a][i] = G(k, a, i);
-  }
-  KOKKOS_INLINE_FUNCTION kernels::Lame lame(int k) const { return {lambda(k), mu(k)}; }
-  KOKKOS_INLINE_FUNCTION int massless(int k) const { return massless_nodes(k); }
-  /// The element's values of an overlap vector (3 per node).
-  template <class View>
-  KOKKOS_INLINE_FUNCTION void gather(const View& v, int k, double out[4][3]) const {
-    for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) out[a][i] = v(3 * node_lid(k, a) + i, 0);
-  }
-};
+/// My elements in the kernel library's record (kernels/tet4_elements.hpp): their nodes' indices
+/// in the overlap map (dof 3 k + c of node k), geometry, material, density and massless nodes.
+using Elements = kernels::TetElements<MemSpace>;
 
 struct AssemblyInfo {
   double min_detF = 1;       ///< smallest det F_{n+1} over all elements (global)
@@ -64,9 +42,9 @@ class Discretization {
   Teuchos::RCP<const Map> element_map() const { return elements_; }  ///< my tets
   Teuchos::RCP<FEGraph> graph() const { return graph_; }
   /// My elements' chunks by colour (the loops of Solver/Assembly/scatter = coloured).
-  const Colouring& colouring() const { return colouring_; }
-  /// The overlap-map node index of each of my elements' 4 nodes.
-  Kokkos::View<int* [4], ExecSpace> element_nodes() const { return ev_.node_lid; }
+  const kernels::TetColouring<MemSpace>& colouring() const { return colouring_; }
+  /// My elements (their nodes: overlap-map node indices).
+  const Elements& tets() const { return tets_; }
 
   /// The reference coordinates of the owned nodes: coordinate c of node n at dof 3 n + c.
   Teuchos::RCP<Vector> reference_positions() const;
@@ -101,9 +79,10 @@ class Discretization {
   Teuchos::RCP<const Import> importer_;
   Teuchos::RCP<const Export> exporter_;
   Teuchos::RCP<FEGraph> graph_;
-  ElementViews ev_;
-  Colouring colouring_;
-  mutable Kokkos::View<int* [12][12], ExecSpace> offsets_;  ///< element entries in the values
+  Elements tets_;
+  Kokkos::View<int* [12], Kokkos::LayoutRight, MemSpace> columns_;  ///< dofs' graph columns
+  kernels::TetColouring<MemSpace> colouring_;
+  mutable kernels::TetOffsets<MemSpace> offsets_;  ///< element entries in the values
 
   /// docs/THEORY.md §6.8: the mass of the elements with massless nodes, M' = sum_e T_e^T M_e T_e,
   /// on my owned rows (a scalar times I_3 per node pair); those elements' kernels leave it out.
@@ -116,6 +95,8 @@ class Discretization {
   Teuchos::RCP<MovedMass> moved_;  ///< null without massless nodes
 
   void build_offsets(const FEMatrix::local_matrix_device_type& lcl) const;
+  /// The coloured loops when model().scatter says so, else null (one loop, atomic adds).
+  const kernels::TetColouring<MemSpace>* loops() const;
   void build_moved_mass();
   void add_moved_mass(const FEMatrix::local_matrix_device_type& lcl, double c) const;
   /// r += c2 M' (u1 - u0) - c1 M' V0, scale += |M'| (|c2 (u1 - u0)| + |c1 V0|) (owned vectors).

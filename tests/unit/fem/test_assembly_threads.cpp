@@ -19,6 +19,7 @@
 
 #include "emcontact/fem/discretization.hpp"
 #include "kernels/newton_tet4.hpp"
+#include "kernels/tet4_loops.hpp"
 #include "support/box_model.hpp"
 
 namespace {
@@ -191,26 +192,24 @@ class Colouring : public ::testing::TestWithParam<int> {};
 TEST_P(Colouring, ChunksOfAColourShareNoNode) {
   const emc::fem::Model m = emc::test::box_model(8);
   emc::fem::Discretization disc(m, Tpetra::getDefaultComm());
-  EXPECT_EQ(disc.colouring().list.chunk, emc::fem::assembly_chunk);
-  const auto node_lid =
-      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), disc.element_nodes());
+  EXPECT_EQ(disc.colouring().chunk, emc::fem::assembly_chunk);
+  const auto node_lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), disc.tets().nodes);
   const int nn = static_cast<int>(disc.overlap_map()->getNodeNumElements() / 3);
-  const emc::fem::Colouring col = emc::fem::colour_chunks(node_lid, nn, GetParam());
-  const auto chunks = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), col.list.chunks);
+  const k::TetColouring<emc::MemSpace> col(emc::ExecSpace(), disc.tets().nodes, nn, GetParam());
+  const auto chunks = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), col.chunks);
   const int ne = static_cast<int>(node_lid.extent(0));
   const int len = GetParam(), nc = (ne + len - 1) / len;
   ASSERT_EQ(static_cast<int>(chunks.extent(0)), nc);
   ASSERT_GT(col.colours(), 1);
-  EXPECT_EQ(col.begin(0), 0);
-  EXPECT_EQ(col.end(col.colours() - 1), nc);
+  EXPECT_EQ(col.start[0], 0);
+  EXPECT_EQ(col.start[col.colours()], nc);
   std::vector<int> seen(ne, 0);
   for (int c = 0; c < col.colours(); ++c) {
-    EXPECT_LT(col.begin(c), col.end(c)) << "colour " << c << " is empty";
+    EXPECT_LT(col.start[c], col.start[c + 1]) << "colour " << c << " is empty";
     std::map<int, int> chunk_of_node;  // node -> the chunk of this colour touching it
-    for (int i = col.begin(c); i < col.end(c); ++i) {
+    for (int i = col.start[c]; i < col.start[c + 1]; ++i) {
       ASSERT_TRUE(chunks(i) >= 0 && chunks(i) < nc);
-      if (i > col.begin(c)) EXPECT_LT(chunks(i - 1), chunks(i)) << "colour " << c;
-      EXPECT_EQ(col.list.last(i) - col.list.first(i), std::min(len, ne - chunks(i) * len));
+      if (i > col.start[c]) EXPECT_LT(chunks(i - 1), chunks(i)) << "colour " << c;
       for (int k = chunks(i) * len; k < std::min(ne, (chunks(i) + 1) * len); ++k) {
         ++seen[k];
         for (int a = 0; a < 4; ++a) {
