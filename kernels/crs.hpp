@@ -161,4 +161,12 @@ void add_at(const ExecutionSpace& space, const char* label, const Values& values
       KOKKOS_LAMBDA(const int k) { values(at(k)) += c * from(k); });
 }
 
+/// out(at(k)) = from(k) for every k (at: distinct positions), in a loop labelled label.
+template <class ExecutionSpace, class Out, class At, class From>
+void set_at(const ExecutionSpace& space, const char* label, const Out& out, const At& at,
+            const From& from) {
+  Kokkos::parallel_for(
+      label, range(space, from.extent(0)), KOKKOS_LAMBDA(const int k) { out(at(k)) = from(k); });
+}
+
 }  // namespace emc::kernels

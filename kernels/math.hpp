@@ -28,6 +28,9 @@ namespace emc::kernels {
 KOKKOS_INLINE_FUNCTION double sqrt(double x) {
   return ::sqrt(x);
 }
+KOKKOS_INLINE_FUNCTION double log1p(double x) {
+  return ::log1p(x);
+}
 KOKKOS_INLINE_FUNCTION double fabs(double x) {
   return ::fabs(x);
 }

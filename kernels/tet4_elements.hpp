@@ -23,10 +23,12 @@ template <class MemorySpace>
 using DofsOut = Kokkos::View<double*, Kokkos::LayoutLeft, MemorySpace>;
 
 /// The elements of a body (or of a rank's part of it) of one material model (Material: Lame for
-/// Saint-Venant-Kirchhoff; the kernels are compiled for each): per tet its nodes (node n's dofs are 3 n + c of the dof vectors),
-/// reference coordinates X, shape gradients G and volume V_e, material constants and density,
-/// and the bits of its massless nodes (bit a: node a, docs/THEORY.md §6.8; such a tet's mass
-/// terms come from the solver's moved mass and are left out here).
+/// Saint-Venant-Kirchhoff, LogHyperelastic for Neo-Hookean and Mooney-Rivlin; the kernels are
+/// compiled for each, so that SVK pays nothing for the others): per tet its nodes (node n's dofs
+/// are 3 n + c of the dof vectors), reference coordinates X, shape gradients G and volume V_e,
+/// material constants and density, and the bits of its massless nodes (bit a: node a,
+/// docs/THEORY.md §6.8; such a tet's mass terms come from the solver's moved mass and are left out
+/// here).
 template <class MemorySpace, class Material = Lame>
 struct TetElements {
   using Rows = Kokkos::View<double* [4][3], Kokkos::LayoutRight, MemorySpace>;
@@ -233,9 +235,9 @@ void von_mises_tet4(const ExecutionSpace& space, const TetElements<MemorySpace, 
 /// (row 3 nodes(k, a) + i for p = 3 a + i, column columns(k, q)), found by bisection
 /// ("emcontact::fem::tet4_offsets"); returns how many entries are missing from the pattern
 /// (their offsets are -1).
-template <class ExecutionSpace, class MemorySpace, class RowMap, class Entries>
+template <class ExecutionSpace, class MemorySpace, class Material, class RowMap, class Entries>
 int tet4_offsets(
-    const ExecutionSpace& space, const TetElements<MemorySpace>& elements,
+    const ExecutionSpace& space, const TetElements<MemorySpace, Material>& elements,
     const NonDeduced<Kokkos::View<const int* [12], Kokkos::LayoutRight, MemorySpace>>& columns,
     const RowMap& row_map, const Entries& entries,
     const NonDeduced<TetOffsets<MemorySpace>>& offsets) {

@@ -2,7 +2,9 @@
 // space (the name's second part); rates are per process and wall-clock second (OpenMP: all
 // its threads), the CPU column the process's (all threads).
 //   BM_EmTet4                  energy-momentum force + exact 12x12 tangent + mass of one
-//                              element (newton_tet4, one core, the kernel alone)
+//                              element (newton_tet4, one core, the kernel alone; SVK)
+//   BM_EmTet4NeoHookean, BM_EmTet4MooneyRivlin   the same with the discrete gradient of
+//                              kernels/hyperelastic.hpp (docs/THEORY.md §12)
 //   BM_Tet4Force/<space>/n     the force-only loop over a box of 6 n^3 tets (em_tet4_forces;
 //                              the nodal forces zeroed, then summed: atomic adds when threaded)
 //   BM_Tet4Tangent/<space>/n   force + exact tangent added into the CRS matrix of the tets'
@@ -22,7 +24,8 @@
 namespace k = emc::kernels;
 namespace t = emc::kernels::test;
 
-static void BM_EmTet4(benchmark::State& state) {
+template <class Material>
+static void newton_element(benchmark::State& state, const Material& material) {
   double X[4][3] = {{0, 0, 0}, {1, 0.1, 0}, {0.1, 1, 0.1}, {0, 0.2, 1}}, G[4][3];
   const double Ve = k::tet_gradients(X, G);
   std::mt19937 rng(1);
@@ -39,15 +42,27 @@ static void BM_EmTet4(benchmark::State& state) {
   for (auto _ : state) {
     for (int p = 0; p < 12; ++p)
       for (int q = 0; q < 12; ++q) A[p][q] = 0;
-    k::newton_tet4(G, Ve, k::lame(1e6, 0.3), 1000, grav, k::Integrator::energy_momentum, 1e-3, s, r,
-                   A, sc);
+    k::newton_tet4(G, Ve, material, 1000, grav, k::Integrator::energy_momentum, 1e-3, s, r, A, sc);
     benchmark::DoNotOptimize(A);
     s.u1[0][0] += 1e-12;
   }
   state.counters["tets_per_s"] =
       benchmark::Counter(state.iterations(), benchmark::Counter::kIsRate);
 }
+static void BM_EmTet4(benchmark::State& state) {
+  newton_element(state, k::lame(1e6, 0.3));
+}
 BENCHMARK(BM_EmTet4);
+static void BM_EmTet4NeoHookean(benchmark::State& state) {
+  const k::Lame l = k::lame(1e6, 0.3);
+  newton_element(state, k::neo_hookean(l.lambda, l.mu));
+}
+BENCHMARK(BM_EmTet4NeoHookean);
+static void BM_EmTet4MooneyRivlin(benchmark::State& state) {
+  const k::Lame l = k::lame(1e6, 0.3);
+  newton_element(state, k::mooney_rivlin(0.5 * l.mu - 5e4, 5e4, l.lambda - 2e5));
+}
+BENCHMARK(BM_EmTet4MooneyRivlin);
 
 namespace {
 

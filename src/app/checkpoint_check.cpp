@@ -177,10 +177,15 @@ std::string model_fingerprint(const Simulation& sim) {
   os << "nodes: " << m.num_nodes() << "\ntets: " << m.global_tets
      << "\nrigid nodes: " << m.rigid_X.size() / 3 << "\nintegrator: " << int(m.integrator)
      << "\nbodies: " << m.bodies.size() << "\n";
-  for (const auto& b : m.bodies)
+  for (const auto& b : m.bodies) {
     os << "body " << b.name << ": nodes " << b.node_end - b.node_begin << ", tets "
        << b.tet_end - b.tet_begin << ", rigid " << b.rigid << ", young " << b.young << ", poisson "
-       << b.poisson << ", density " << b.density << "\n";
+       << b.poisson << ", density " << b.density;
+    if (b.model == fem::MaterialModel::neo_hookean) os << ", model neo-hookean";
+    if (b.model == fem::MaterialModel::mooney_rivlin)
+      os << ", model mooney-rivlin, c1 " << b.c1 << ", c2 " << b.c2;
+    os << "\n";
+  }
   std::uint64_t h = m.mesh_fnv;  // X, the tets, rigid_X, fixed: hashed where all were held
   if (sim.contact) {
     os << "pairs: " << sim.contact->pairs().size() << "\n";

@@ -235,6 +235,31 @@ void check_mesh_parameters(const ParameterList& params, const input::Given& give
   }
 }
 
+/// Whether the input file or an override gives `Bodies/<body>/Material/<name>` (a Material
+/// sublist the file leaves out is the schema's, whose entries are not marked as defaults).
+bool material_given(const input::Given& given, const std::string& body, const std::string& name) {
+  const std::string path = "Bodies/" + body + "/Material/" + name;
+  if (given.overridden(path)) return true;
+  const auto& bodies = given.file.sublist("Bodies");
+  return bodies.isSublist(body) && bodies.sublist(body).isSublist("Material") &&
+         bodies.sublist(body).sublist("Material").isParameter(name);
+}
+
+/// docs/THEORY.md §12.1: c2 is a parameter of model mooney-rivlin alone.
+void check_material_parameters(const ParameterList& params, const input::Given& given,
+                               const std::string& file) {
+  const auto& bodies = params.sublist("Bodies");
+  for (auto b = bodies.begin(); b != bodies.end(); ++b) {
+    const std::string& body = bodies.name(b);
+    const std::string model = bodies.sublist(body).sublist("Material").get<std::string>("model");
+    if (model != "mooney-rivlin" && material_given(given, body, "c2"))
+      detail::fail(file, "Bodies/" + body + "/Material/c2",
+                   {"given, but model \"" + model +
+                        "\" does not read it (it is a parameter of model \"mooney-rivlin\")",
+                    "with model \"" + model + "\": young, poisson, density"});
+  }
+}
+
 /// Checks `Contact/<pair>/<role>` ("body" or "body/surface" naming an existing body); returns
 /// the body name.
 std::string contact_body(const ParameterList& bodies, const ParameterList& pair,
@@ -312,6 +337,7 @@ void check(const ParameterList& params, const input::Given& given, const std::st
   check_dirichlet(params, file);
   check_rigid_bodies(params, file);
   check_mesh_parameters(params, given, file);
+  check_material_parameters(params, given, file);
   check_contact(params, file);
   check_belos(params, file);
 }

@@ -9,9 +9,6 @@
 #include "emcontact/views.hpp"
 
 namespace emc::fem {
-const kernels::TetColouring<MemSpace>* Discretization::loops() const {
-  return model_.scatter == Scatter::coloured ? &colouring_ : nullptr;
-}
 
 AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const Vector& u1,
                                       double dt, FEMatrix* A, Vector& r, Vector* scale) const {
@@ -25,9 +22,9 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
     A->beginAssembly();
     A->setAllToScalar(0.0);
   }
-  const int ne = tets_.size();
-  kernels::MinDetF worst;
-  {  // the views are released before the matrix and vectors are exported
+  AssemblyInfo info;
+  info.min_detF = 1e300;  // without elements, or where no det F compares (all NaN): no worst
+  {                       // the views are released before the matrix and vectors are exported
     kernels::NewtonStep step;
     for (int i = 0; i < 3; ++i) step.gravity[i] = model_.gravity[i];
     step.dt = dt;
@@ -35,19 +32,24 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
     kernels::NewtonRows<MemSpace> out;
     out.r = write_column(ro);
     if (want_scale) out.s = write_column(so);
-    if (want_matrix) {
-      const auto lcl = A->getLocalMatrixDevice();
-      out.values = lcl.values;
-      if (offsets_.extent(0) != static_cast<std::size_t>(ne)) build_offsets(lcl);
-      out.offsets = offsets_;
-    }
-    worst = kernels::newton_tet4_assemble(ExecSpace(), tets_, step, read_column(*u0o),
-                                          read_column(*V0o), read_column(*u1o), out, loops());
+    const auto u0v = read_column(*u0o), V0v = read_column(*V0o), u1v = read_column(*u1o);
+    bool first = true;
+    for_each_group([&](const auto& g) {
+      if (want_matrix) {
+        const auto lcl = A->getLocalMatrixDevice();
+        out.values = lcl.values;
+        if (g.offsets.extent(0) != static_cast<std::size_t>(g.size())) build_offsets(g, lcl);
+        out.offsets = g.offsets;
+      }
+      const kernels::MinDetF w =
+          kernels::newton_tet4_assemble(ExecSpace(), g.tets, step, u0v, V0v, u1v, out, loops(g));
+      if (first || w.val < info.min_detF) {
+        info.min_detF = w.val;
+        info.worst_tet = w.loc >= 0 && w.loc < g.size() ? part_.my_tets[g.local[w.loc]] : -1;
+      }
+      first = false;
+    });
   }
-  AssemblyInfo info;
-  info.min_detF = ne > 0 ? worst.val : 1e300;
-  // no element's det F compares (all NaN): no worst element
-  info.worst_tet = worst.loc >= 0 && worst.loc < ne ? part_.my_tets[worst.loc] : -1;
   // global minimum: reduce (detF, tet) pairs
   double local[2] = {info.min_detF, static_cast<double>(info.worst_tet)};
   std::vector<double> all(2 * comm_->getSize());
@@ -73,12 +75,14 @@ AssemblyInfo Discretization::assemble(const Vector& u0, const Vector& V0, const 
 
 // Position of every element entry (p, q) in the values of the (owned+shared) local matrix,
 // found once per graph: the scatter then adds without searching the row.
-void Discretization::build_offsets(const FEMatrix::local_matrix_device_type& lcl) const {
-  offsets_ =
-      decltype(offsets_)(Kokkos::ViewAllocateWithoutInitializing("emc::tet_offsets"), tets_.size());
+template <class Material>
+void Discretization::build_offsets(const ElementGroup<Material>& g,
+                                   const FEMatrix::local_matrix_device_type& lcl) const {
+  g.offsets = kernels::TetOffsets<MemSpace>(
+      Kokkos::ViewAllocateWithoutInitializing("emc::tet_offsets"), g.size());
   // column indices are sorted within a row of a fill-complete local graph
-  if (kernels::tet4_offsets(ExecSpace(), tets_, columns_, lcl.graph.row_map, lcl.graph.entries,
-                            offsets_) > 0)
+  if (kernels::tet4_offsets(ExecSpace(), g.tets, g.columns, lcl.graph.row_map, lcl.graph.entries,
+                            g.offsets) > 0)
     throw Error("internal: element entry missing from the FE graph");
 }
 
@@ -87,8 +91,17 @@ kernels::Monitors Discretization::monitors(const Vector& u, const Vector& V) con
   to_overlap(u, *uo);
   to_overlap(V, *Vo);
   // element-wise sums: every element counted once, whichever rank owns its nodes
-  kernels::Monitors sum = kernels::monitors_tet4_sum(ExecSpace(), tets_, model_.gravity.data(),
-                                                     read_column(*uo), read_column(*Vo));
+  kernels::Monitors sum;
+  bool first = true;
+  for_each_group([&](const auto& g) {
+    const kernels::Monitors m = kernels::monitors_tet4_sum(
+        ExecSpace(), g.tets, model_.gravity.data(), read_column(*uo), read_column(*Vo));
+    if (first)
+      sum = m;
+    else
+      sum += m;
+    first = false;
+  });
   if (moved_) add_moved_monitors(u, V, sum);
   double local[13] = {sum.kinetic,   sum.elastic,   sum.potential, sum.L[0], sum.L[1],
                       sum.L[2],      sum.J[0],      sum.J[1],      sum.J[2], sum.mass,
@@ -113,9 +126,13 @@ Teuchos::RCP<Vector> Discretization::von_mises(const Vector& u) const {
   to_overlap(u, *uo);
   auto out = Teuchos::rcp(new Vector(elements_));
   {
-    const auto vm = out->getLocalViewDevice(Tpetra::Access::OverwriteAll);
-    kernels::von_mises_tet4(ExecSpace(), tets_, read_column(*uo),
-                            Kokkos::subview(vm, Kokkos::ALL(), 0));
+    const auto vm =
+        Kokkos::subview(out->getLocalViewDevice(Tpetra::Access::OverwriteAll), Kokkos::ALL(), 0);
+    for_each_group([&](const auto& g) {
+      Kokkos::View<double*, MemSpace> mine("emc::von_mises", g.size());
+      kernels::von_mises_tet4(ExecSpace(), g.tets, read_column(*uo), mine);
+      kernels::set_at(ExecSpace(), "emcontact::fem::von_mises_scatter", vm, g.local_view, mine);
+    });
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "emcontact/error.hpp"
+#include "emcontact/views.hpp"
 #include "kernels/svk.hpp"
 #include "kernels/tet4.hpp"
 
@@ -21,9 +22,8 @@ Discretization::Discretization(const Model& model, Partition part, RCP<const Com
   build_element_data();
   build_moved_mass();
   build_graph();
-  colouring_ = kernels::TetColouring<MemSpace>(ExecSpace(), tets_.nodes,
-                                               static_cast<int>(overlap_->getNodeNumElements() / 3),
-                                               assembly_chunk);
+  finish_group(svk_);
+  finish_group(hyper_);
 }
 
 void Discretization::build_maps() {
@@ -55,10 +55,16 @@ Teuchos::RCP<Vector> Discretization::reference_positions() const {
   return X;
 }
 
-void Discretization::build_element_data() {
-  const int ne = static_cast<int>(part_.my_tets.size());
-  tets_ = Elements(ne);
-  auto& ev = tets_;
+namespace {
+
+/// The group of my elements `local` (indices into part.my_tets), each with the kernel material
+/// material(body); throws on a tet of non-positive volume.
+template <class Material, class Of>
+void fill_group(const Model& model, const Partition& part, const Map& overlap,
+                std::vector<int> local, const Of& material, ElementGroup<Material>& g) {
+  const int ne = static_cast<int>(local.size());
+  g.tets = kernels::TetElements<MemSpace, Material>(ne);
+  auto& ev = g.tets;
   auto X = Kokkos::create_mirror_view(ev.X);
   auto G = Kokkos::create_mirror_view(ev.G);
   auto Ve = Kokkos::create_mirror_view(ev.Ve);
@@ -67,23 +73,23 @@ void Discretization::build_element_data() {
   auto lid = Kokkos::create_mirror_view(ev.nodes);
   auto light = Kokkos::create_mirror_view(ev.massless);
   for (int k = 0; k < ne; ++k) {
-    const int e = part_.my_tets[k];
-    double x[4][3], g[4][3] = {};  // zero where tet_gradients leaves it (a flat tet, refused)
-    light(k) = massless_mask(model_, e);
+    const int e = part.my_tets[local[k]];
+    double x[4][3], gr[4][3] = {};  // zero where tet_gradients leaves it (a flat tet, refused)
+    light(k) = massless_mask(model, e);
     for (int a = 0; a < 4; ++a) {
-      const int n = model_.tets[4 * e + a];
-      lid(k, a) = overlap_->getLocalElement(dof_gid(n, 0)) / 3;
-      const double* Xn = model_.x(n);
+      const int n = model.tets[4 * e + a];
+      lid(k, a) = overlap.getLocalElement(dof_gid(n, 0)) / 3;
+      const double* Xn = model.x(n);
       for (int i = 0; i < 3; ++i) x[a][i] = X(k, a, i) = Xn[i];
     }
-    Ve(k) = kernels::tet_gradients(x, g);
+    Ve(k) = kernels::tet_gradients(x, gr);
     if (!(Ve(k) > 0))
-      throw InputError("mesh: element " + std::to_string(model_.tet_id(e) + 1) + " has volume " +
+      throw InputError("mesh: element " + std::to_string(model.tet_id(e) + 1) + " has volume " +
                        std::to_string(Ve(k)) + "; every tetrahedron must have positive volume");
     for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) G(k, a, i) = g[a][i];
-    const Body& b = model_.bodies[model_.body_of_tet[e]];
-    mat(k) = kernels::lame(b.young, b.poisson);
+      for (int i = 0; i < 3; ++i) G(k, a, i) = gr[a][i];
+    const Body& b = model.bodies[model.body_of_tet[e]];
+    mat(k) = material(b);
     rho(k) = b.density;
   }
   Kokkos::deep_copy(ev.X, X);
@@ -93,18 +99,56 @@ void Discretization::build_element_data() {
   Kokkos::deep_copy(ev.rho, rho);
   Kokkos::deep_copy(ev.nodes, lid);
   Kokkos::deep_copy(ev.massless, light);
+  g.local = std::move(local);
+  g.local_view = to_view("emc::group_local", g.local);
+}
+
+}  // namespace
+
+void Discretization::build_element_data() {
+  std::vector<int> svk, hyper;
+  for (std::size_t k = 0; k < part_.my_tets.size(); ++k) {
+    const Body& b = model_.bodies[model_.body_of_tet[part_.my_tets[k]]];
+    (b.model == MaterialModel::svk ? svk : hyper).push_back(static_cast<int>(k));
+  }
+  fill_group(
+      model_, part_, *overlap_, std::move(svk),
+      [](const Body& b) { return svk_material(b.material()); }, svk_);
+  fill_group(
+      model_, part_, *overlap_, std::move(hyper),
+      [](const Body& b) { return hyper_material(b.material()); }, hyper_);
+}
+
+template <class Material>
+void Discretization::finish_group(ElementGroup<Material>& g) {
+  const int ne = g.size();
+  const auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g.tets.nodes);
+  g.columns = decltype(g.columns)("emc::tet_columns", ne);
+  auto col = Kokkos::create_mirror_view(g.columns);
+  auto colmap = graph_->getColMap();
+  for (int k = 0; k < ne; ++k)
+    for (int a = 0; a < 4; ++a) {
+      const GO node = overlap_->getGlobalElement(3 * lid(k, a)) / 3;
+      for (int c = 0; c < 3; ++c) col(k, 3 * a + c) = colmap->getLocalElement(dof_gid(node, c));
+    }
+  Kokkos::deep_copy(g.columns, col);
+  g.colouring = kernels::TetColouring<MemSpace>(
+      ExecSpace(), g.tets.nodes, static_cast<int>(overlap_->getNodeNumElements() / 3),
+      assembly_chunk);
 }
 
 void Discretization::build_graph() {
   const int ne = static_cast<int>(part_.my_tets.size());
   const int nn = static_cast<int>(overlap_->getNodeNumElements() / 3);
-  auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), tets_.nodes);
   // node adjacency from my elements: sorted unique (row, col) node pairs
   std::vector<std::pair<int, int>> pairs;
   pairs.reserve(16 * static_cast<std::size_t>(ne));
-  for (int k = 0; k < ne; ++k)
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b) pairs.emplace_back(lid(k, a), lid(k, b));
+  for_each_group([&](const auto& g) {
+    const auto lid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), g.tets.nodes);
+    for (int k = 0; k < g.size(); ++k)
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) pairs.emplace_back(lid(k, a), lid(k, b));
+  });
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   std::vector<std::size_t> start(nn + 1, 0);
@@ -144,16 +188,6 @@ void Discretization::build_graph() {
       graph_->insertGlobalIndices(dof_gid(node, c), Teuchos::ArrayView<const GO>(cols));
   }
   graph_->endAssembly();
-
-  columns_ = decltype(columns_)("emc::tet_columns", ne);
-  auto col = Kokkos::create_mirror_view(columns_);
-  auto colmap = graph_->getColMap();
-  for (int k = 0; k < ne; ++k)
-    for (int a = 0; a < 4; ++a) {
-      const GO node = overlap_->getGlobalElement(3 * lid(k, a)) / 3;
-      for (int c = 0; c < 3; ++c) col(k, 3 * a + c) = colmap->getLocalElement(dof_gid(node, c));
-    }
-  Kokkos::deep_copy(columns_, col);
 }
 
 void Discretization::to_overlap(const Vector& owned, Vector& overlap) const {

@@ -387,7 +387,12 @@ void Discretization::apply_mass(const Vector& v, Vector& Mv) const {
   auto vo = new_overlap_vector();
   to_overlap(v, *vo);
   Vector mo(overlap_);
-  kernels::mass_tet4_apply(ExecSpace(), tets_, read_column(*vo), write_column(mo), loops());
+  {
+    const auto v = read_column(*vo);
+    const auto Mv = write_column(mo);
+    for_each_group(
+        [&](const auto& g) { kernels::mass_tet4_apply(ExecSpace(), g.tets, v, Mv, loops(g)); });
+  }
   Mv.putScalar(0.0);
   Mv.doExport(mo, *exporter_, Tpetra::ADD);
   if (moved_) moved_->M->apply(v, Mv, Teuchos::NO_TRANS, 1.0, 1.0);

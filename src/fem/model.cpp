@@ -4,6 +4,8 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "emcontact/error.hpp"
 #include "emcontact/types.hpp"
@@ -32,14 +34,38 @@ std::array<double, 3> vec3(const Teuchos::ParameterList& p, const std::string& n
   return {a[0], a[1], a[2]};
 }
 
+/// docs/THEORY.md §12.1: Mooney-Rivlin's c2 (c1 = mu / 2 - c2 with the small-strain mu of young
+/// and poisson) at most mu / 2 (c1 >= 0) and lambda / 4 (the volumetric term's lambda - 4 c2 >=
+/// 0: below, W has no minimum in J).
+void mooney_rivlin_constants(const Teuchos::ParameterList& mat, Body& b, const std::string& at) {
+  b.c2 = mat.get<double>("c2");
+  const kernels::Lame l = kernels::lame(b.young, b.poisson);
+  b.c1 = 0.5 * l.mu - b.c2;
+  const double most = std::min(0.5 * l.mu, 0.25 * l.lambda);
+  const auto g = [](double v) {
+    std::ostringstream os;
+    os << std::setprecision(6) << v;
+    return os.str();
+  };
+  if (b.c2 > most)
+    throw InputError(at + "c2: " + g(b.c2) + " is above " +
+                     (0.5 * l.mu <= 0.25 * l.lambda ? "mu / 2 = " : "lambda / 4 = ") + g(most) +
+                     " (mu, lambda of young and poisson: c1 = mu / 2 - c2 and the volumetric "
+                     "lambda - 4 c2 must not be negative); allowed: 0 <= c2 <= " +
+                     g(most));
+}
+
 Body make_body(const std::string& name, const Teuchos::ParameterList& bp, mesh::BodyMesh mesh,
                const std::string& where) {
   Body b;
   b.name = name;
   const auto& mat = bp.sublist("Material");
+  const std::string at = where + "/Material/";
+  b.model = Teuchos::getIntegralValue<MaterialModel>(mat, "model");
   b.young = mat.get<double>("young");
   b.poisson = mat.get<double>("poisson");
   b.density = mat.get<double>("density");
+  if (b.model == MaterialModel::mooney_rivlin) mooney_rivlin_constants(mat, b, at);
   const auto& init = bp.sublist("Initial");
   b.velocity = vec3(init, "velocity", where + "/Initial");
   b.angular_velocity = vec3(init, "angular velocity", where + "/Initial");

@@ -1,6 +1,7 @@
 // Schema of the body, load, Dirichlet and assembly parts of the input.
 #include "emcontact/fem/parameters.hpp"
 
+#include "emcontact/fem/material.hpp"
 #include "emcontact/fem/scatter.hpp"
 #include "emcontact/input/validators.hpp"
 #include "kernels/em_tet4.hpp"
@@ -24,9 +25,30 @@ ValidatorPtr bounded_vector3(double bound) {
 
 Teuchos::RCP<const Teuchos::ParameterList> valid_body_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("<body>"));
-  auto& mat = pl->sublist("Material", false, "Saint-Venant-Kirchhoff material of the body.");
+  auto& mat = pl->sublist("Material", false,
+                          "Hyperelastic material of the body (docs/THEORY.md §1.2, §12).");
+  mat.set("model", std::string("svk"),
+          "The strain energy W (docs/THEORY.md §12), each with the small-strain Lame constants "
+          "lambda, mu of young and poisson. svk: Saint-Venant-Kirchhoff, lambda/2 tr(E)^2 + mu "
+          "E:E, for small strains with large rotations (in compression its stress peaks at a "
+          "stretch of 0.58 and falls to zero there: a hard impact crushes it); neo-hookean: "
+          "mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2, for rubber-like bodies at large strain; "
+          "mooney-rivlin: c1 (I1 - 3) + c2 (I2 - 3) - 2 (c1 + 2 c2) ln J + (lambda - 4 c2)/2 (ln "
+          "J)^2 with c1 = mu/2 - c2 (c2 = 0: neo-hookean). Energy and momenta are exact with "
+          "each.",
+          string_choice(
+              "model", {"svk", "neo-hookean", "mooney-rivlin"},
+              {"Saint-Venant-Kirchhoff", "compressible Neo-Hookean", "compressible Mooney-Rivlin"},
+              std::vector<MaterialModel>{MaterialModel::svk, MaterialModel::neo_hookean,
+                                         MaterialModel::mooney_rivlin}));
+  mat.set("c2", 0.0,
+          "Mooney-Rivlin's c2 [Pa] (model mooney-rivlin only; c1 = mu/2 - c2): from 0 to the "
+          "smaller of mu/2 (c1 >= 0) and lambda/4 (the ln J term's lambda - 4 c2 >= 0). A fit "
+          "with c1, c2 and an initial Poisson ratio nu: young = 4 (c1 + c2) (1 + nu).",
+          double_range(0.0, 1e14));
   mat.set("young", 1e6,
-          "Young's modulus [Pa]. At most 1e14, 100 times diamond's (1.2e12 Pa, the stiffest "
+          "Young's modulus [Pa] (the small-strain one, of every model). At most "
+          "1e14, 100 times diamond's (1.2e12 Pa, the stiffest "
           "solid; 1e13 in CGS units): 1e15 on a 5 cm mesh at dt = 5 ms already makes the Newton "
           "matrix too ill-conditioned for GMRES, 1e308 overflows. At least 1e-6, 1e7 times below "
           "the softest gels (about 10 Pa): below it the elastic forces vanish in the round-off "

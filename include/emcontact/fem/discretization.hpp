@@ -18,8 +18,20 @@ inline GO dof_gid(long long node, int c) {
   return 3 * node + c;
 }
 
-/// My elements in the kernel library's record (kernels/tet4_elements.hpp): their nodes' indices
-/// in the overlap map (dof 3 k + c of node k), geometry, material, density and massless nodes.
+/// My elements of one kernel material type (kernels::Lame: svk; kernels::LogHyperelastic:
+/// neo-hookean and mooney-rivlin) in the kernel library's record (kernels/tet4_elements.hpp):
+/// their nodes' indices in the overlap map (dof 3 k + c of node k), geometry, material, density
+/// and massless nodes, and what their loops need.
+template <class Material>
+struct ElementGroup {
+  kernels::TetElements<MemSpace, Material> tets;
+  std::vector<int> local;  ///< each tet's index among my elements (element_map's order)
+  Kokkos::View<int*, MemSpace> local_view;                         ///< the same on the device
+  Kokkos::View<int* [12], Kokkos::LayoutRight, MemSpace> columns;  ///< dofs' graph columns
+  kernels::TetColouring<MemSpace> colouring;
+  mutable kernels::TetOffsets<MemSpace> offsets;  ///< element entries in the values
+  int size() const { return static_cast<int>(local.size()); }
+};
 using Elements = kernels::TetElements<MemSpace>;
 
 struct AssemblyInfo {
@@ -41,10 +53,11 @@ class Discretization {
   Teuchos::RCP<const Map> overlap_map() const { return overlap_; }   ///< owned + shared dofs
   Teuchos::RCP<const Map> element_map() const { return elements_; }  ///< my tets
   Teuchos::RCP<FEGraph> graph() const { return graph_; }
-  /// My elements' chunks by colour (the loops of Solver/Assembly/scatter = coloured).
-  const kernels::TetColouring<MemSpace>& colouring() const { return colouring_; }
-  /// My elements (their nodes: overlap-map node indices).
-  const Elements& tets() const { return tets_; }
+  /// My Saint-Venant-Kirchhoff elements' chunks by colour (the loops of
+  /// Solver/Assembly/scatter = coloured).
+  const kernels::TetColouring<MemSpace>& colouring() const { return svk_.colouring; }
+  /// My Saint-Venant-Kirchhoff elements (their nodes: overlap-map node indices).
+  const Elements& tets() const { return svk_.tets; }
 
   /// The reference coordinates of the owned nodes: coordinate c of node n at dof 3 n + c.
   Teuchos::RCP<Vector> reference_positions() const;
@@ -79,10 +92,14 @@ class Discretization {
   Teuchos::RCP<const Import> importer_;
   Teuchos::RCP<const Export> exporter_;
   Teuchos::RCP<FEGraph> graph_;
-  Elements tets_;
-  Kokkos::View<int* [12], Kokkos::LayoutRight, MemSpace> columns_;  ///< dofs' graph columns
-  kernels::TetColouring<MemSpace> colouring_;
-  mutable kernels::TetOffsets<MemSpace> offsets_;  ///< element entries in the values
+  ElementGroup<kernels::Lame> svk_;               ///< my svk elements
+  ElementGroup<kernels::LogHyperelastic> hyper_;  ///< my neo-hookean and mooney-rivlin ones
+  /// f(group) for each non-empty group, svk first.
+  template <class F>
+  void for_each_group(F&& f) const {
+    if (svk_.size() > 0) f(svk_);
+    if (hyper_.size() > 0) f(hyper_);
+  }
 
   /// docs/THEORY.md §6.8: the mass of the elements with massless nodes, M' = sum_e T_e^T M_e T_e,
   /// on my owned rows (a scalar times I_3 per node pair); those elements' kernels leave it out.
@@ -94,9 +111,14 @@ class Discretization {
   };
   Teuchos::RCP<MovedMass> moved_;  ///< null without massless nodes
 
-  void build_offsets(const FEMatrix::local_matrix_device_type& lcl) const;
-  /// The coloured loops when model().scatter says so, else null (one loop, atomic adds).
-  const kernels::TetColouring<MemSpace>* loops() const;
+  template <class Material>
+  void build_offsets(const ElementGroup<Material>& g,
+                     const FEMatrix::local_matrix_device_type& lcl) const;
+  /// A group's coloured loops when model().scatter says so, else null (one loop, atomic adds).
+  template <class Material>
+  const kernels::TetColouring<MemSpace>* loops(const ElementGroup<Material>& g) const {
+    return model_.scatter == Scatter::coloured ? &g.colouring : nullptr;
+  }
   void build_moved_mass();
   void add_moved_mass(const FEMatrix::local_matrix_device_type& lcl, double c) const;
   /// r += c2 M' (u1 - u0) - c1 M' V0, scale += |M'| (|c2 (u1 - u0)| + |c1 V0|) (owned vectors).
@@ -108,6 +130,9 @@ class Discretization {
   void build_maps();
   void build_element_data();
   void build_graph();
+  /// The group's columns (from the graph's column map) and colouring.
+  template <class Material>
+  void finish_group(ElementGroup<Material>& g);
 };
 
 }  // namespace emc::fem

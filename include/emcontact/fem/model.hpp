@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "emcontact/fem/material.hpp"
 #include "emcontact/fem/scatter.hpp"
 #include "emcontact/mesh/body_mesh.hpp"
 #include "kernels/em_tet4.hpp"
@@ -21,7 +22,11 @@ struct Body {
   std::string name;
   int node_begin = 0, node_end = 0;  ///< global node range [begin, end)
   int tet_begin = 0, tet_end = 0;    ///< global tet range
-  double young = 0, poisson = 0, density = 0;
+  /// Material/model and its constants: young and poisson the small-strain ones, c1 = mu/2 - c2
+  /// and c2 Mooney-Rivlin's (0 for the other models).
+  MaterialModel model = MaterialModel::svk;
+  double young = 0, poisson = 0, density = 0, c1 = 0, c2 = 0;
+  MaterialConstants material() const { return {model, young, poisson, c1, c2}; }
   std::array<double, 3> velocity{}, angular_velocity{};
   mesh::BodyMesh mesh;  ///< the body's own mesh (local node numbers), for its named surfaces
   /// A rigid surface body (no tets): its nodes are not unknowns; they live in Model::rigid_X
