@@ -40,6 +40,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
   bool swept = false;
   bool warm = false;      // §6.1-§6.2: a re-solve starts from the last solution
   bool search = search_;  // §6.9: search the set, then solve it to the full tolerance
+  bool restated = false;  // §11.4: the last return map changed an entry's state
   for (;;) {
     // docs/THEORY.md §8: the contact nodes within reach of the step (u1: the prediction or the
     // last solution) and of the trial set's chains
@@ -57,7 +58,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       Teuchos::TimeMonitor tm(*timer);  // the rows of P of a new set (§3)
       changed = constraints_.use(&trial, std::move(index));
     }
-    g = solve(changed, empty, warm, search);
+    g = solve(changed, empty, warm, search, restated);
     constraints_.sync(trial);  // the facets and xi Newton's iterates moved (§5)
     swept = false;             // u1 moved
     warm = g != nullptr;
@@ -112,6 +113,7 @@ bool ActiveSetLoop::solve(const Vector& u0, Vector& u1, const std::vector<Active
       next.push_back(a);
     }
     const int changes = contact_.global_count(static_cast<int>(fresh.size()) + n_release + n_state);
+    restated = contact_.global_count(n_state) > 0;
     if (changes == 0 && !search) break;
     if (changes == 0) {  // §6.9: settled at the search tolerance; now solve it to the full one
       search = false;

@@ -79,8 +79,8 @@ StartScales Newton::start_scales(const Vector& u0, const Vector& V0, double dt) 
 }
 
 NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                           double reference, double rtol) {
-  last_ = iterate(u0, V0, dt, u1, reference, rtol > 0 ? rtol : opt_.rtol);
+                           double reference, double rtol, bool iterate_once) {
+  last_ = iterate(u0, V0, dt, u1, reference, rtol > 0 ? rtol : opt_.rtol, iterate_once);
   // C of a step's first iterate: only a solve from the step's start iterate measures it (a
   // re-solve or a final solve of §6.9 starts near its solution, where r_1 / r_0^2 is larger)
   if (reference <= 0 && last_.residuals.size() >= 2 && last_.residuals[0] > 0)
@@ -97,7 +97,7 @@ NewtonResult Newton::solve(const Vector& u0, const Vector& V0, double dt, Vector
 }
 
 NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                             double reference, double rtol) {
+                             double reference, double rtol, bool once) {
   auto& t_asm = assembly_timer();
   auto& t_elim = elimination_timer();
   auto& t_solve = linear_solve_timer();
@@ -161,8 +161,9 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     const double target = std::max(rtol * std::max(reference, r0), floor);
     res.floor = floor;
     // the start iterate only if it is a solution to round-off: the absolute tolerance applies
-    // to Newton's own iterates (an atol above r_0 froze the bodies: u_{n+1} = u_n, V flipped)
-    if (r <= target && (it > 0 || r <= roundoff || reference > 0)) {
+    // to Newton's own iterates (an atol above r_0 froze the bodies: u_{n+1} = u_n, V flipped);
+    // a re-solve's at its tolerance unless an entry changed its state (`once`, §11.4)
+    if (r <= target && (it > 0 || r <= roundoff || (reference > 0 && !once))) {
       res.converged = true;
       return res;
     }

@@ -105,10 +105,11 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   const Vector& u0 = *s_.u;
   double reference = 0;   // the largest first residual of the step's solves (§6.1-§6.2)
   bool searched = false;  // the last solve was a search solve (§6.9)
-  auto newton = [&](bool empty, bool warm, bool search) -> bool {
+  auto newton = [&](bool empty, bool warm, bool search, bool restated) -> bool {
     if (!warm) start_iterate(h, empty, u1);
     const double rtol = search ? newton_.options().search_rtol : 0.0;
-    const NewtonResult nr = newton_.solve(u0, *s_.V, h, u1, warm ? reference : 0.0, rtol);
+    const NewtonResult nr =
+        newton_.solve(u0, *s_.V, h, u1, warm ? reference : 0.0, rtol, warm && restated);
     if (!nr.residuals.empty()) reference = std::max(warm ? reference : 0.0, nr.residuals.front());
     rep.newton_iterations += nr.iterations;
     // the accepted set's iterations: a final solve continues its search solve (§6.9)
@@ -118,7 +119,7 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
     if (!nr.converged) rep.last_failure = nr.failure;
     return nr.converged;
   };
-  if (!loop_) return newton(true, false, false);
+  if (!loop_) return newton(true, false, false, false);
   // the prediction of u_{n+1} (the reach of the contact nodes, docs/THEORY.md §8)
   u1.assign(u0);
   if (s_.last_increment && s_.last_h > 0) u1.update(h / s_.last_h, *s_.last_increment, 1.0);
@@ -126,10 +127,11 @@ bool Stepper::solve_step(double h, Vector& u1, StepReport& rep) {
   Teuchos::TimeMonitor tm(contact_timer());  // the loop's own work; Newton's is its own
   const bool ok = loop_->solve(
       u0, u1, s_.active,
-      [&](bool changed, bool empty, bool warm, bool search) -> const Vector* {
+      [&](bool changed, bool empty, bool warm, bool search, bool restated) -> const Vector* {
         contact_timer().stop();  // dropping a stale preconditioner is the linear solver's time
         if (changed) newton_.solver().matrix_changed();  // a new P: the preconditioner is stale
-        const bool converged = newton(empty, warm && newton_.options().warm_resolves, search);
+        const bool converged =
+            newton(empty, warm && newton_.options().warm_resolves, search, restated);
         contact_timer().start();
         return converged ? &newton_.last_residual() : nullptr;
       },

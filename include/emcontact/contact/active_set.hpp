@@ -37,8 +37,11 @@ class ActiveSetLoop {
   /// no rank has an active entry). `warm`: u1 holds the last converged solve of the step, the
   /// start iterate (docs/THEORY.md §6.1-§6.2); else u1 is reset to the step's start iterate.
   /// `search`: the solve only searches the set (docs/THEORY.md §6.9), to a looser tolerance.
+  /// `restated`: the last solve's return map changed an entry's state (stick <-> slip): a warm
+  /// solve then takes at least one Newton iterate (docs/THEORY.md §11.4).
   /// Returns the contactless residual at the solution, or null if Newton failed.
-  using Solve = std::function<const Vector*(bool changed, bool empty, bool warm, bool search)>;
+  using Solve =
+      std::function<const Vector*(bool changed, bool empty, bool warm, bool search, bool restated)>;
 
   /// docs/THEORY.md §6.9: the solves search the set to a looser tolerance and the settled set
   /// is solved to the full one and checked again (the Solve honours `search`; needs warm).

@@ -59,8 +59,11 @@ class Newton {
   /// residual (a re-solve of the step started from the last solution, docs/THEORY.md
   /// §6.1-§6.2), and the start iterate is accepted if it meets that tolerance already.
   /// rtol > 0 replaces the relative tolerance (a search solve, docs/THEORY.md §6.9).
+  /// iterate: the start iterate is accepted only if it is a solution to round-off (a re-solve
+  /// after a contact entry changed its state, whose new equations the start iterate's residual
+  /// at the old tolerance cannot see: docs/THEORY.md §11.4).
   NewtonResult solve(const Vector& u0, const Vector& V0, double dt, Vector& u1,
-                     double reference = 0, double rtol = 0);
+                     double reference = 0, double rtol = 0, bool iterate = false);
 
   /// The sizes of the step of dt from (u0, V0) before any iterate (StartScales).
   StartScales start_scales(const Vector& u0, const Vector& V0, double dt);
@@ -83,7 +86,7 @@ class Newton {
 
  private:
   NewtonResult iterate(const Vector& u0, const Vector& V0, double dt, Vector& u1, double reference,
-                       double rtol);
+                       double rtol, bool once);
   double linear_tolerance(const std::vector<double>& r, double floor) const;
   /// C r_k^2 with C = r_k / r_{k-1}^2 (or the last step's); < 0 when there is no estimate.
   double predicted_next(const std::vector<double>& r) const;
