@@ -13,6 +13,24 @@ namespace emc::kernels {
 
 enum class Integrator : int { energy_momentum = 0, midpoint = 1 };
 
+/// f_A = V_e P G_A with P = F_{n+1/2} S_alg (node-major: 3A+i).
+KOKKOS_INLINE_FUNCTION void internal_force(const double G[4][3], double Ve, const double Fm[3][3],
+                                           const double S[3][3], double f[12]) {
+  double P[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double s = 0;
+      for (int k = 0; k < 3; ++k) s += Fm[i][k] * S[k][j];
+      P[i][j] = s;
+    }
+  for (int A = 0; A < 4; ++A)
+    for (int i = 0; i < 3; ++i) {
+      double s = 0;
+      for (int j = 0; j < 3; ++j) s += P[i][j] * G[A][j];
+      f[3 * A + i] = Ve * s;
+    }
+}
+
 /// Internal force f[12] (node-major: 3A+i) and, if K != nullptr, the tangent d f / d u_{n+1}
 /// K[12][12], given u0 = u_n and u1 = u_{n+1} at the 4 nodes.
 KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame& m,
@@ -35,20 +53,7 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame&
     green_strain(Hm, Ea);
   }
   svk_stress(m, Ea, S);
-  // P = F_{n+1/2} S_alg;  f_A = V_e P G_A
-  double P[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double s = 0;
-      for (int k = 0; k < 3; ++k) s += Fm[i][k] * S[k][j];
-      P[i][j] = s;
-    }
-  for (int A = 0; A < 4; ++A)
-    for (int i = 0; i < 3; ++i) {
-      double s = 0;
-      for (int j = 0; j < 3; ++j) s += P[i][j] * G[A][j];
-      f[3 * A + i] = Ve * s;
-    }
+  internal_force(G, Ve, Fm, S, f);
   if (K == nullptr) return;
   const double(*Fx)[3] = (integ == Integrator::energy_momentum) ? F1 : Fm;
   double a[4][3], b[4][3], SG[4][3], FF[3][3];
@@ -118,19 +123,7 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const LogHy
     l = log_J(Ea);
     hyper_stress(m, Ea, Ci, l, S);
   }
-  double P[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double s = 0;
-      for (int k = 0; k < 3; ++k) s += Fm[i][k] * S[k][j];
-      P[i][j] = s;
-    }
-  for (int A = 0; A < 4; ++A)
-    for (int i = 0; i < 3; ++i) {
-      double s = 0;
-      for (int j = 0; j < 3; ++j) s += P[i][j] * G[A][j];
-      f[3 * A + i] = Ve * s;
-    }
+  internal_force(G, Ve, Fm, S, f);
   if (K == nullptr) return;
   const double(*Fx)[3] = em ? F1 : Fm;
   double SG[4][3];

@@ -66,6 +66,36 @@ struct TetElements {
   }
 };
 
+/// Host copies of a TetElements' arrays: filled on the host, then copied into the record's
+/// memory space by copy_to (the set-up of a record from a mesh).
+template <class MemorySpace, class Material>
+struct TetElementsMirror {
+  using E = TetElements<MemorySpace, Material>;
+  typename decltype(E::nodes)::HostMirror nodes;
+  typename E::Rows::HostMirror X, G;
+  typename E::Values::HostMirror Ve, rho;
+  typename decltype(E::material)::HostMirror material;
+  typename decltype(E::massless)::HostMirror massless;
+
+  explicit TetElementsMirror(const E& e)
+      : nodes(Kokkos::create_mirror_view(e.nodes)),
+        X(Kokkos::create_mirror_view(e.X)),
+        G(Kokkos::create_mirror_view(e.G)),
+        Ve(Kokkos::create_mirror_view(e.Ve)),
+        rho(Kokkos::create_mirror_view(e.rho)),
+        material(Kokkos::create_mirror_view(e.material)),
+        massless(Kokkos::create_mirror_view(e.massless)) {}
+  void copy_to(const E& e) const {
+    Kokkos::deep_copy(e.nodes, nodes);
+    Kokkos::deep_copy(e.X, X);
+    Kokkos::deep_copy(e.G, G);
+    Kokkos::deep_copy(e.Ve, Ve);
+    Kokkos::deep_copy(e.rho, rho);
+    Kokkos::deep_copy(e.material, material);
+    Kokkos::deep_copy(e.massless, massless);
+  }
+};
+
 /// The step's constants of the Newton residual: gravity, dt and the integrator.
 struct NewtonStep {
   double gravity[3] = {0, 0, 0};

@@ -11,27 +11,15 @@
 #include "kernels/em_tet4.hpp"
 #include "kernels/monitors.hpp"
 #include "kernels/newton_tet4.hpp"
+#include "support/element.hpp"
 
 namespace k = emc::kernels;
 
 namespace {
 
-struct Element {
-  double X[4][3], G[4][3], Ve;
-};
-
-/// A skewed tet and random displacements of size `amp` (large deformation for amp ~ 0.3).
-Element make_element() {
-  Element e{{{0.1, -0.05, 0.02}, {1.1, 0.1, -0.1}, {0.2, 0.9, 0.15}, {-0.1, 0.2, 1.2}}, {}, 0};
-  e.Ve = k::tet_gradients(e.X, e.G);
-  return e;
-}
-
-void random_u(std::mt19937& rng, double amp, double u[4][3]) {
-  std::uniform_real_distribution<double> d(-amp, amp);
-  for (int a = 0; a < 4; ++a)
-    for (int i = 0; i < 3; ++i) u[a][i] = d(rng);
-}
+using emc::kernels::test::Element;
+using emc::kernels::test::make_element;
+using emc::kernels::test::random_u;
 
 double frob(const double A[12][12]) {
   double s = 0;
@@ -124,23 +112,7 @@ TEST_P(Integrators, ForcesAndMomentsVanish) {
     random_u(rng, 0.4, u0);
     random_u(rng, 0.4, u1);
     k::em_tet4(e.G, e.Ve, kMat, GetParam(), u0, u1, f, nullptr);
-    double fmax = 0, sum[3] = {0, 0, 0}, mom[3] = {0, 0, 0};
-    for (int a = 0; a < 4; ++a) {
-      double x[3];
-      for (int i = 0; i < 3; ++i) {
-        x[i] = e.X[a][i] + 0.5 * (u0[a][i] + u1[a][i]);
-        sum[i] += f[3 * a + i];
-        fmax = std::max(fmax, std::fabs(f[3 * a + i]));
-      }
-      const double* fa = &f[3 * a];
-      mom[0] += x[1] * fa[2] - x[2] * fa[1];
-      mom[1] += x[2] * fa[0] - x[0] * fa[2];
-      mom[2] += x[0] * fa[1] - x[1] * fa[0];
-    }
-    for (int i = 0; i < 3; ++i) {
-      EXPECT_LT(std::fabs(sum[i]), 1e-13 * fmax);
-      EXPECT_LT(std::fabs(mom[i]), 1e-13 * fmax);
-    }
+    EXPECT_LT(emc::kernels::test::force_imbalance(e, u0, u1, f), 1e-13) << "trial " << trial;
   }
 }
 
@@ -156,14 +128,7 @@ TEST_P(Integrators, ForceOfATinyStrainIsLinearToRoundOff) {
   for (int trial = 0; trial < 10; ++trial) {
     random_u(rng, 1e-12, u);
     k::em_tet4(e.G, e.Ve, kMat, GetParam(), u, u, f, nullptr);
-    double err = 0, norm = 0;
-    for (int r = 0; r < 12; ++r) {
-      double lin = 0;
-      for (int c = 0; c < 12; ++c) lin += 2 * K0[r][c] * u[c / 3][c % 3];
-      err += (f[r] - lin) * (f[r] - lin);
-      norm += lin * lin;
-    }
-    EXPECT_LT(std::sqrt(err / norm), 1e-10) << "trial " << trial;
+    EXPECT_LT(emc::kernels::test::linear_force_error(K0, u, f), 1e-10) << "trial " << trial;
   }
 }
 

@@ -16,6 +16,7 @@
 #include "kernels/tet4_elements.hpp"
 #include "support/backends.hpp"
 #include "support/meshes.hpp"
+#include "support/sums.hpp"
 
 namespace {
 
@@ -23,20 +24,7 @@ namespace k = emc::kernels;
 namespace t = emc::kernels::test;
 constexpr double eps = std::numeric_limits<double>::epsilon();
 
-/// A sum of contributions, their count and the sum of their magnitudes (a host reference).
-struct Sum {
-  double value = 0, magnitude = 0;
-  int terms = 0;
-  void add(double v) {
-    value += v;
-    magnitude += std::fabs(v);
-    ++terms;
-  }
-  /// How far another order of the same terms may land (device: fused products too).
-  double tolerance(bool bitwise) const {
-    return bitwise ? 2 * (terms > 1 ? terms - 1 : 0) * eps * magnitude : 1e-12 * magnitude;
-  }
-};
+using Sum = t::Sum;
 
 /// A box of 6 x 4^3 tets in large motion, each with its own material and density; every 7th
 /// tet has massless nodes (its mass terms are the solver's moved mass, left out by the loops).
@@ -81,31 +69,19 @@ class TetElements : public ::testing::Test {
   k::TetElements<M> elements() const {
     const int ne = p.box.num_tets();
     k::TetElements<M> e(ne);
-    auto nodes = Kokkos::create_mirror_view(e.nodes);
-    auto X = Kokkos::create_mirror_view(e.X);
-    auto G = Kokkos::create_mirror_view(e.G);
-    auto Ve = Kokkos::create_mirror_view(e.Ve);
-    auto material = Kokkos::create_mirror_view(e.material);
-    auto rho = Kokkos::create_mirror_view(e.rho);
-    auto massless = Kokkos::create_mirror_view(e.massless);
+    const k::TetElementsMirror<M, k::Lame> h(e);
     for (int k = 0; k < ne; ++k) {
       double x[4][3], g[4][3] = {};
-      Ve(k) = p.element(k, x, g);
+      h.Ve(k) = p.element(k, x, g);
       for (int a = 0; a < 4; ++a) {
-        nodes(k, a) = p.box.tets[4 * k + a];
-        for (int i = 0; i < 3; ++i) X(k, a, i) = x[a][i], G(k, a, i) = g[a][i];
+        h.nodes(k, a) = p.box.tets[4 * k + a];
+        for (int i = 0; i < 3; ++i) h.X(k, a, i) = x[a][i], h.G(k, a, i) = g[a][i];
       }
-      material(k) = p.lame(k);
-      rho(k) = p.rho[k];
-      massless(k) = p.massless(k);
+      h.material(k) = p.lame(k);
+      h.rho(k) = p.rho[k];
+      h.massless(k) = p.massless(k);
     }
-    Kokkos::deep_copy(e.nodes, nodes);
-    Kokkos::deep_copy(e.X, X);
-    Kokkos::deep_copy(e.G, G);
-    Kokkos::deep_copy(e.Ve, Ve);
-    Kokkos::deep_copy(e.material, material);
-    Kokkos::deep_copy(e.rho, rho);
-    Kokkos::deep_copy(e.massless, massless);
+    h.copy_to(e);
     return e;
   }
   /// A dof vector on M holding v (zeros if v is empty, of the box's size).

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <set>
 #include <vector>
@@ -17,27 +16,14 @@
 #include "kernels/tet4_loops.hpp"
 #include "support/backends.hpp"
 #include "support/meshes.hpp"
+#include "support/sums.hpp"
 
 namespace {
 
 namespace k = emc::kernels;
 namespace t = emc::kernels::test;
-constexpr double eps = std::numeric_limits<double>::epsilon();
 
-/// A sum of contributions, their count and the sum of their magnitudes (a host reference).
-struct Sum {
-  double value = 0, magnitude = 0;
-  int terms = 0;
-  void add(double v) {
-    value += v;
-    magnitude += std::fabs(v);
-    ++terms;
-  }
-  /// How far another order of the same terms may land (device: fused products too).
-  double tolerance(bool bitwise) const {
-    return bitwise ? 2 * (terms > 1 ? terms - 1 : 0) * eps * magnitude : 1e-12 * magnitude;
-  }
-};
+using Sum = t::Sum;
 
 /// A small box with a random large deformation (u0, u1 up to 0.1 of the box), on the host.
 struct Problem {

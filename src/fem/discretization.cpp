@@ -64,14 +64,9 @@ void fill_group(const Model& model, const Partition& part, const Map& overlap,
                 std::vector<int> local, const Of& material, ElementGroup<Material>& g) {
   const int ne = static_cast<int>(local.size());
   g.tets = kernels::TetElements<MemSpace, Material>(ne);
-  auto& ev = g.tets;
-  auto X = Kokkos::create_mirror_view(ev.X);
-  auto G = Kokkos::create_mirror_view(ev.G);
-  auto Ve = Kokkos::create_mirror_view(ev.Ve);
-  auto mat = Kokkos::create_mirror_view(ev.material);
-  auto rho = Kokkos::create_mirror_view(ev.rho);
-  auto lid = Kokkos::create_mirror_view(ev.nodes);
-  auto light = Kokkos::create_mirror_view(ev.massless);
+  const kernels::TetElementsMirror<MemSpace, Material> h(g.tets);
+  const auto &X = h.X, &G = h.G, &Ve = h.Ve, &rho = h.rho;
+  const auto &mat = h.material, &lid = h.nodes, &light = h.massless;
   for (int k = 0; k < ne; ++k) {
     const int e = part.my_tets[local[k]];
     double x[4][3], gr[4][3] = {};  // zero where tet_gradients leaves it (a flat tet, refused)
@@ -92,13 +87,7 @@ void fill_group(const Model& model, const Partition& part, const Map& overlap,
     mat(k) = material(b);
     rho(k) = b.density;
   }
-  Kokkos::deep_copy(ev.X, X);
-  Kokkos::deep_copy(ev.G, G);
-  Kokkos::deep_copy(ev.Ve, Ve);
-  Kokkos::deep_copy(ev.material, mat);
-  Kokkos::deep_copy(ev.rho, rho);
-  Kokkos::deep_copy(ev.nodes, lid);
-  Kokkos::deep_copy(ev.massless, light);
+  h.copy_to(g.tets);
   g.local = std::move(local);
   g.local_view = to_view("emc::group_local", g.local);
 }
