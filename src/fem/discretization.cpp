@@ -65,27 +65,25 @@ void fill_group(const Model& model, const Partition& part, const Map& overlap,
   const int ne = static_cast<int>(local.size());
   g.tets = kernels::TetElements<MemSpace, Material>(ne);
   const kernels::TetElementsMirror<MemSpace, Material> h(g.tets);
-  const auto &X = h.X, &G = h.G, &Ve = h.Ve, &rho = h.rho;
-  const auto &mat = h.material, &lid = h.nodes, &light = h.massless;
   for (int k = 0; k < ne; ++k) {
     const int e = part.my_tets[local[k]];
     double x[4][3], gr[4][3] = {};  // zero where tet_gradients leaves it (a flat tet, refused)
-    light(k) = massless_mask(model, e);
+    h.massless(k) = massless_mask(model, e);
     for (int a = 0; a < 4; ++a) {
       const int n = model.tets[4 * e + a];
-      lid(k, a) = overlap.getLocalElement(dof_gid(n, 0)) / 3;
+      h.nodes(k, a) = overlap.getLocalElement(dof_gid(n, 0)) / 3;
       const double* Xn = model.x(n);
-      for (int i = 0; i < 3; ++i) x[a][i] = X(k, a, i) = Xn[i];
+      for (int i = 0; i < 3; ++i) x[a][i] = h.X(k, a, i) = Xn[i];
     }
-    Ve(k) = kernels::tet_gradients(x, gr);
-    if (!(Ve(k) > 0))
+    h.Ve(k) = kernels::tet_gradients(x, gr);
+    if (!(h.Ve(k) > 0))
       throw InputError("mesh: element " + std::to_string(model.tet_id(e) + 1) + " has volume " +
-                       std::to_string(Ve(k)) + "; every tetrahedron must have positive volume");
+                       std::to_string(h.Ve(k)) + "; every tetrahedron must have positive volume");
     for (int a = 0; a < 4; ++a)
-      for (int i = 0; i < 3; ++i) G(k, a, i) = gr[a][i];
+      for (int i = 0; i < 3; ++i) h.G(k, a, i) = gr[a][i];
     const Body& b = model.bodies[model.body_of_tet[e]];
-    mat(k) = material(b);
-    rho(k) = b.density;
+    h.material(k) = material(b);
+    h.rho(k) = b.density;
   }
   h.copy_to(g.tets);
   g.local = std::move(local);
