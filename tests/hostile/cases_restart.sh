@@ -139,6 +139,27 @@ hostile_restart_checkpoint_of_another_run_refused() {
   expect_exit 0 "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.05 --restart b/checkpoint.h5 || return 1
 }
 
+# docs/THEORY.md §12.5: the material model is part of the model's fingerprint: a Neo-Hookean
+# run's checkpoint restarted with model svk, or as mooney-rivlin, is refused naming the body's
+# model; restarted as it was written, it continues.
+hostile_restart_with_another_material_model_refused() {
+  cp "$HERE/../regression/two_blocks.xml" in.xml
+  local nh=(--set Bodies/A/Material/model=neo-hookean)
+  "$EMC" in.xml "${RST_QUIET[@]}" "${nh[@]}" --set Time/end=0.06 --set "Output/checkpoint every=6" \
+    --output ck >ck.log 2>&1 || { tail -3 ck.log; return 1; }
+  rst_snapshot ck >before.txt
+  expect_exit 1 "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=0.08 --restart ck/checkpoint.h5 ||
+    return 1
+  expect_short_err 1 && expect_err "ck/checkpoint\.h5: written for another model: .*model neo-hookean" ||
+    return 1
+  expect_exit 1 "$EMC" in.xml "${RST_QUIET[@]}" --set Bodies/A/Material/model=mooney-rivlin \
+    --set Bodies/A/Material/c2=1000 --set Time/end=0.08 --restart ck/checkpoint.h5 || return 1
+  expect_err "written for another model: .*mooney-rivlin" || return 1
+  rst_snapshot ck | cmp -s - before.txt || { echo "ck/ changed"; return 1; }
+  expect_exit 0 "$EMC" in.xml "${RST_QUIET[@]}" "${nh[@]}" --set Time/end=0.08 \
+    --restart ck/checkpoint.h5 || return 1
+}
+
 # Forged: a time t that is not the time of the checkpoint step's monitors row (t = 1e-300 made
 # time go back from step 6 to step 7; t + dt/2 shifted every later row).
 hostile_restart_forged_time_refused() {
