@@ -198,8 +198,9 @@ TEST_F(InputTest, UnknownScatterRefused) {
 TEST_F(InputTest, MisspeltNameRefused) {
   Xml x;
   x.material = R"(<Parameter name="youngs" type="double" value="1e5"/>)";
-  expect_message(error(x), {"parameter \"Bodies/ball/Material/youngs\"", "unknown name",
-                            "did you mean \"young\"", "allowed: model, c2, young, poisson, density"});
+  expect_message(error(x),
+                 {"parameter \"Bodies/ball/Material/youngs\"", "unknown name",
+                  "did you mean \"young\"", "allowed: model, c2, young, poisson, density"});
 }
 
 TEST_F(InputTest, WrongTypeRefused) {
