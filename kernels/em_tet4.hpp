@@ -13,7 +13,20 @@ namespace emc::kernels {
 
 enum class Integrator : int { energy_momentum = 0, midpoint = 1 };
 
-/// f_A = V_e P G_A with P = F_{n+1/2} S_alg (node-major: 3A+i).
+/// H_n, H_{n+1}, H_{n+1/2} = (H_n + H_{n+1}) / 2, F_{n+1} and F_{n+1/2} of the element
+/// (docs/THEORY.md §1.4).
+KOKKOS_INLINE_FUNCTION void step_kinematics(const double G[4][3], const double u0[4][3],
+                                            const double u1[4][3], double H0[3][3], double H1[3][3],
+                                            double Hm[3][3], double F1[3][3], double Fm[3][3]) {
+  displacement_gradient(G, u0, H0);
+  displacement_gradient(G, u1, H1);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Hm[i][j] = 0.5 * (H0[i][j] + H1[i][j]);
+  identity_plus(H1, F1);
+  identity_plus(Hm, Fm);
+}
+
+/// f_A = V_e P G_A with P = F_{n+1/2} S_alg (node-major: 3A+i, docs/THEORY.md §1.4 eq. 18).
 KOKKOS_INLINE_FUNCTION void internal_force(const double G[4][3], double Ve, const double Fm[3][3],
                                            const double S[3][3], double f[12]) {
   double P[3][3];
@@ -37,12 +50,7 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame&
                                     Integrator integ, const double u0[4][3], const double u1[4][3],
                                     double f[12], double (*K)[12]) {
   double H0[3][3], H1[3][3], Hm[3][3], F1[3][3], Fm[3][3], Ea[3][3], S[3][3];
-  displacement_gradient(G, u0, H0);
-  displacement_gradient(G, u1, H1);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Hm[i][j] = 0.5 * (H0[i][j] + H1[i][j]);
-  identity_plus(H1, F1);
-  identity_plus(Hm, Fm);
+  step_kinematics(G, u0, u1, H0, H1, Hm, F1, Fm);
   if (integ == Integrator::energy_momentum) {
     double E0[3][3], E1[3][3];
     green_strain(H0, E0);
@@ -100,12 +108,7 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const LogHy
                                     Integrator integ, const double u0[4][3], const double u1[4][3],
                                     double f[12], double (*K)[12]) {
   double H0[3][3], H1[3][3], Hm[3][3], F1[3][3], Fm[3][3], S[3][3];
-  displacement_gradient(G, u0, H0);
-  displacement_gradient(G, u1, H1);
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Hm[i][j] = 0.5 * (H0[i][j] + H1[i][j]);
-  identity_plus(H1, F1);
-  identity_plus(Hm, Fm);
+  step_kinematics(G, u0, u1, H0, H1, Hm, F1, Fm);
   const bool em = integ == Integrator::energy_momentum;
   DiscreteGradient dg;
   double Ci[3][3], l = 0;
@@ -113,7 +116,7 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const LogHy
     double E0[3][3], E1[3][3];
     green_strain(H0, E0);
     green_strain(H1, E1);
-    discrete_gradient(m, E0, E1, dg);
+    discrete_gradient(m, E0, E1, dg, K != nullptr);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) S[i][j] = dg.S[i][j];
   } else {

@@ -184,7 +184,7 @@ namespace hyper_detail {
 /// and their gradients with respect to E1, by the series in M = C_m^-1 dE: with
 /// l(s) = l_m + sum_k c_k s^k along E_m + s dE / 2 (c_k = (-1)^(k+1) tr(M^k) / (2k)),
 /// delta_1 = 2 sum_{k odd >= 3} c_k and delta_2 = 2 sum_{k odd >= 3} e_k, e_k = sum_i c_i c_{k-i};
-/// d tr(M^k) / dE1 = k sym((I - M) M^(k-1) C_m^-1).
+/// d tr(M^k) / dE1 = k sym((I - M) M^(k-1) C_m^-1). g1 = g2 = nullptr: the values alone.
 KOKKOS_INLINE_FUNCTION void log_deltas_series(const M3 Ci, double lm, const M3 M, double d[2],
                                               M3 g1, M3 g2) {
   constexpr int K = 9;
@@ -200,24 +200,29 @@ KOKKOS_INLINE_FUNCTION void log_deltas_series(const M3 Ci, double lm, const M3 M
   c[0] = lm;
   for (int k = 1; k <= K; ++k) {
     M3 A, B, Pk;
-    mul(IM, P, A);
-    mul(A, Ci, B);
     mul(P, M, Pk);  // M^k
     const double sign = (k % 2) ? 0.5 : -0.5;
     c[k] = sign * trace(Pk) / k;
-    sym(B, gc[k]);
+    if (g1) {
+      mul(IM, P, A);
+      mul(A, Ci, B);
+      sym(B, gc[k]);
+    }
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
-        gc[k][i][j] *= sign;
+        if (g1) gc[k][i][j] *= sign;
         P[i][j] = Pk[i][j];
       }
   }
   d[0] = d[1] = 0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) g1[i][j] = g2[i][j] = 0;
   for (int k = 3; k <= K; k += 2) {
     d[0] += 2 * c[k];
     for (int n = 0; n <= k; ++n) d[1] += 2 * c[n] * c[k - n];
+  }
+  if (!g1) return;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) g1[i][j] = g2[i][j] = 0;
+  for (int k = 3; k <= K; k += 2) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         g1[i][j] += 2 * gc[k][i][j];
@@ -228,16 +233,17 @@ KOKKOS_INLINE_FUNCTION void log_deltas_series(const M3 Ci, double lm, const M3 M
   }
 }
 
-/// The same directly: l1, l0 and C_1^-1 from E1, E0.
+/// The same directly: l1, l0 and C_1^-1 from E1, E0 (g1 = g2 = nullptr: the values alone).
 KOKKOS_INLINE_FUNCTION void log_deltas_direct(const M3 E0, const M3 E1, const M3 Cim, double lm,
                                               const M3 dE, double d[2], M3 g1, M3 g2) {
-  M3 Ci1, T, CdC;
-  inverse_C(E1, Ci1);
   const double l0 = log_J(E0), l1 = log_J(E1), cd = dot(Cim, dE);
-  mul(Cim, dE, T);
-  mul(T, Cim, CdC);
   d[0] = l1 - l0 - cd;
   d[1] = (l1 - l0) * (l1 + l0) - 2 * lm * cd;
+  if (!g1) return;
+  M3 Ci1, T, CdC;
+  inverse_C(E1, Ci1);
+  mul(Cim, dE, T);
+  mul(T, Cim, CdC);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const double s = 0.5 * (CdC[i][j] + CdC[j][i]);
@@ -248,9 +254,11 @@ KOKKOS_INLINE_FUNCTION void log_deltas_direct(const M3 E0, const M3 E1, const M3
 
 }  // namespace hyper_detail
 
-/// The discrete gradient between E0 and E1 (above).
+/// The discrete gradient between E0 and E1 (above, docs/THEORY.md §12.2-§12.4); r and Q (what
+/// the tangent needs beyond S_algo) only if `tangent` (a residual alone skips their cost).
 KOKKOS_INLINE_FUNCTION void discrete_gradient(const LogHyperelastic& m, const double E0[3][3],
-                                              const double E1[3][3], DiscreteGradient& out) {
+                                              const double E1[3][3], DiscreteGradient& out,
+                                              bool tangent = true) {
   using namespace hyper_detail;
   M3 Em, M;
   for (int i = 0; i < 3; ++i)
@@ -267,16 +275,17 @@ KOKKOS_INLINE_FUNCTION void discrete_gradient(const LogHyperelastic& m, const do
   M3 g1, g2;
   out.series = dot(M, M) <= kSeriesBound * kSeriesBound;
   if (out.series)
-    log_deltas_series(out.Ci, out.l, M, d, g1, g2);
+    log_deltas_series(out.Ci, out.l, M, d, tangent ? g1 : nullptr, tangent ? g2 : nullptr);
   else
-    log_deltas_direct(E0, E1, out.Ci, out.l, out.dE, d, g1, g2);
+    log_deltas_direct(E0, E1, out.Ci, out.l, out.dE, d, tangent ? g1 : nullptr,
+                      tangent ? g2 : nullptr);
   out.delta = -m.alpha * d[0] + m.b * d[1];
   const bool moved = n > 1e-280;  // dE = 0 (or denormal): S_algo = S(E_m), r = Q = 0
   out.r = moved ? out.delta / n : 0.0;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      const double g = -m.alpha * g1[i][j] + m.b * g2[i][j];
-      out.Q[i][j] = moved ? g / n - 2 * out.delta * out.dE[i][j] / (n * n) : 0.0;
+      const double g = tangent ? -m.alpha * g1[i][j] + m.b * g2[i][j] : 0.0;
+      out.Q[i][j] = moved && tangent ? g / n - 2 * out.delta * out.dE[i][j] / (n * n) : 0.0;
       out.S[i][j] += out.r * out.dE[i][j];
     }
 }
