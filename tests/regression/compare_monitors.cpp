@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
       for (std::size_t c = first; c < first + 3; ++c) scale[c] = m;
     }
     double worst = 0;
-    std::size_t wr = 0, wc = 0;
+    std::size_t wr = 0, wc = 0, first_row = a.size(), first_col = 0;
     int bad = 0;
     for (std::size_t k = 0; k < a.size(); ++k) {
       const auto va = physical(a[k]), vb = physical(b[k]);
@@ -63,6 +63,10 @@ int main(int argc, char** argv) {
           wr = k;
           wc = c;
         }
+        if (rel > 1 && first_row == a.size()) {
+          first_row = k;
+          first_col = c;
+        }
         bad += rel > 1;
       }
     }
@@ -71,6 +75,15 @@ int main(int argc, char** argv) {
         "%zu rows: worst %s at row %zu: |diff| %.3e = %.3g x allowed (scale %.3e); %d "
         "values out of tolerance\n",
         a.size(), kNames[wc], wr, d, worst, scale[wc], bad);
+    if (bad) {  // where they part: a contact decision, or a Newton count, shows it
+      const MonitorRow &ra = a[first_row], &rb = b[first_row];
+      std::printf(
+          "first out of tolerance: %s at row %zu (step %ld): %.17g vs %.17g; active contacts %d "
+          "vs %d, Newton iterations %d vs %d, contact re-solves %d vs %d\n",
+          kNames[first_col], first_row, ra.step, physical(ra)[first_col], physical(rb)[first_col],
+          ra.active_contacts, rb.active_contacts, ra.newton_iterations, rb.newton_iterations,
+          ra.contact_resolves, rb.contact_resolves);
+    }
     return bad ? 1 : 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "compare_monitors: %s\n", e.what());

@@ -1,6 +1,8 @@
 #pragma once
 // Runs a whole case in-process (the same code path as the emcontact binary) and returns its
-// monitors. Output goes to a fresh directory under the build tree.
+// monitors. Output goes to a fresh directory gtest_runs/<out> of the test's working directory:
+// never one of the out_<name> directories of the ctest cases beside it (a monitor case's run
+// that another test overwrote before its 2-rank twin compared with it would fail that test).
 #include <Tpetra_Core.hpp>
 #include <filesystem>
 #include <string>
@@ -11,9 +13,16 @@
 
 namespace emc::testing {
 
+/// The output directory of an in-process run called `name` (its parent made if missing).
+inline std::string run_directory(const std::string& name) {
+  std::filesystem::create_directories("gtest_runs");
+  return "gtest_runs/" + name;
+}
+
 inline std::vector<output::MonitorRow> run_case(const std::string& xml,
                                                 std::vector<std::string> overrides,
-                                                const std::string& out) {
+                                                const std::string& name) {
+  const std::string out = run_directory(name);
   app::Options o;
   o.input = std::string(EMC_TEST_DIR) + "/" + xml;
   o.overrides = std::move(overrides);

@@ -272,7 +272,7 @@ TEST(Coulomb, LargeMuIsFullStick) {
 TEST(Coulomb, StickingNodesStayInTheCone) {
   emc::app::Options o;
   o.input = std::string(EMC_TEST_DIR) + "/slide.xml";
-  o.output_dir = "out_slide_cone" + suffix();
+  o.output_dir = emc::testing::run_directory("out_slide_cone" + suffix());
   o.overwrite = true;
   auto sim = emc::app::setup(o, Tpetra::getDefaultComm());
   double worst = 0;
