@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <sstream>
 #include <unordered_set>
 
 #include "emcontact/contact/active.hpp"
 #include "emcontact/contact/detection.hpp"  // entry_rule, kernels::facet_outside
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/input/echo.hpp"
 #include "emcontact/output/parallel_hdf5.hpp"
 
@@ -17,9 +17,7 @@ namespace emc::app {
 namespace {
 
 std::string hex(std::uint64_t h) {
-  char buf[20];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  return format("%016llx", static_cast<unsigned long long>(h));
 }
 
 std::vector<std::string> lines(const std::string& s) {
@@ -41,9 +39,7 @@ std::string first_difference(const std::string& stored, const std::string& input
 
 /// `v` with 17 significant digits (exact), as the monitors hold it.
 std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  return format("%.17g", v);
 }
 
 [[noreturn]] void refuse(const std::string& path, const std::string& what) {

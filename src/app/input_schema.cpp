@@ -43,11 +43,9 @@ Teuchos::RCP<const ParameterList> body_template() {
   return body;
 }
 
-/// `Time`: the time module's parameters, then the fem module's (`integrator`).
+/// `Time`: the time module's parameters.
 Teuchos::RCP<const ParameterList> time_schema() {
-  auto time = Teuchos::rcp(new ParameterList(*emc::time::valid_parameters()));
-  append_entries(*time, *emc::fem::valid_time_parameters());
-  return time;
+  return Teuchos::rcp(new ParameterList(*emc::time::valid_parameters()));
 }
 
 /// `Solver`: `Newton` (time module), `Linear` (linalg module), then `Assembly` (fem module).

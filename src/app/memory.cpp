@@ -5,7 +5,6 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -18,6 +17,7 @@
 #endif
 
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 
 namespace emc::app {
 namespace {
@@ -68,9 +68,7 @@ Available available(int ranks_on_node, bool mapped) {
 }
 
 std::string gib(double bytes) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g GiB", bytes / 1073741824.0);
-  return buf;
+  return format("%.3g GiB", bytes / 1073741824.0);
 }
 
 }  // namespace

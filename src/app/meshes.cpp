@@ -1,11 +1,11 @@
 #include "emcontact/app/meshes.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
-#include <cstdio>
 
 #include "emcontact/app/memory.hpp"
 #include "emcontact/app/mesh_process.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/input/echo.hpp"
 #include "emcontact/mesh/generate.hpp"
 #include "emcontact/parallel.hpp"
@@ -57,9 +57,7 @@ int ranks_on_node(const Comm& comm) {
 }
 
 std::string count(double n) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.0f", n);
-  return buf;
+  return format("%.0f", n);
 }
 
 /// Gmsh fills a volume with about this fraction of mesh::estimated_tets (0.55 on the tumbling

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -29,10 +30,10 @@ constexpr int kCsvFd = 3;
 /// The last non-empty line of what was written to `fd` (cut at 200 characters), or "".
 std::string last_line(int fd) {
   std::string text;
-  char buf[4096];
+  std::array<char, 4096> chunk;
   if (::lseek(fd, 0, SEEK_SET) != 0) return "";
-  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) {
-    text.append(buf, static_cast<std::size_t>(n));
+  for (ssize_t n; (n = ::read(fd, chunk.data(), chunk.size())) > 0;) {
+    text.append(chunk.data(), static_cast<std::size_t>(n));
     if (text.size() > (1u << 20)) text.erase(0, text.size() - 4096);  // only the end matters
   }
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
@@ -128,10 +129,13 @@ std::string plot(const output::Directory& dir, const std::string& python,
 /// the binary's directory: <prefix>/share/emcontact/ after `cmake --install`), else the source
 /// tree's (EMC_PLOT_SCRIPT, for the binary of a build tree).
 std::string plot_script() {
-  char exe[4096];
-  const ssize_t n = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+  std::string self(4096, '\0');
+  ssize_t n;
+  while ((n = ::readlink("/proc/self/exe", self.data(), self.size())) >= 0 &&
+         static_cast<std::size_t>(n) == self.size())  // it may have been cut: a larger one
+    self.resize(2 * self.size());
   if (n > 0) {
-    const std::string self(exe, static_cast<std::size_t>(n));
+    self.resize(static_cast<std::size_t>(n));
     const std::string installed = self.substr(0, self.rfind('/') + 1) + EMC_PLOT_SCRIPT_INSTALLED;
     if (char* real = ::realpath(installed.c_str(), nullptr)) {  // without bin/..
       std::string script = real;

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include "emcontact/format.hpp"
+
 namespace emc::app {
 
 Progress::Progress(bool enabled, double end_time)
@@ -10,20 +12,18 @@ Progress::Progress(bool enabled, double end_time)
 void Progress::update(long step, double t, double dt, int newton, double energy_error, int active,
                       bool dissipates) {
   if (!enabled_) return;
-  char buf[200];
-  const int n = std::snprintf(buf, sizeof buf,
-                              "step %7ld  t = %-11.5g (%5.1f%%)  dt = %-9.3g  newton %2d  "
-                              "|%s-E0|/(K+W+|Pi|) = %-9.2e  contacts %d",
-                              step, t, 100.0 * t / end_, dt, newton, dissipates ? "E+D" : "E",
-                              energy_error, active);
+  const std::string text = format(
+      "step %7ld  t = %-11.5g (%5.1f%%)  dt = %-9.3g  newton %2d  "
+      "|%s-E0|/(K+W+|Pi|) = %-9.2e  contacts %d",
+      step, t, 100.0 * t / end_, dt, newton, dissipates ? "E+D" : "E", energy_error, active);
   if (tty_) {
-    std::string line(buf, n > 0 ? static_cast<std::size_t>(n) : 0);
+    std::string line = text;
     if (line.size() < width_) line.append(width_ - line.size(), ' ');
     width_ = line.size();
     std::fprintf(stderr, "\r%s", line.c_str());
     std::fflush(stderr);
   } else if (t >= next_report_ - 1e-12 * end_) {
-    std::fprintf(stderr, "%s\n", buf);
+    std::fprintf(stderr, "%s\n", text.c_str());
     next_report_ = t + 0.05 * end_;
   }
 }

@@ -8,6 +8,7 @@
 #include "emcontact/app/checkpoint_check.hpp"
 #include "emcontact/contact/active.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/output/atomic_file.hpp"
 #include "emcontact/output/checkpoint.hpp"
 #include "emcontact/output/parallel_hdf5.hpp"
@@ -35,12 +36,9 @@ void copy_scalars(const From& f, To& t) {
 void check_time(const output::Checkpoint& c, const time::Stepper& stepper,
                 const std::string& path) {
   if (c.t < stepper.end() - 1e-9 * stepper.nominal_dt()) return;
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                ": the checkpoint is at step %ld, t = %.17g, at or past Time/end = %.17g: "
-                "nothing left to run (a later Time/end continues the run)",
-                c.step, c.t, stepper.end());
-  throw Error(path + buf);
+  throw Error(path + format(": the checkpoint is at step %ld, t = %.17g, at or past Time/end = "
+                            "%.17g: nothing left to run (a later Time/end continues the run)",
+                            c.step, c.t, stepper.end()));
 }
 
 /// A changed Time/dt applies from the restart on (the step size of the next step and the
@@ -145,7 +143,7 @@ void check_restored_state(const Simulation& sim, const RestartInput& in, const s
     sim.contact->select(*s.u, *s.u, sim.contact->gather(s.active));
     d = sim.contact->facet_point_distances(sim.contact->positions(*s.u), s.active);
   }
-  output::on_every_rank(raw_comm(*disc.comm()), [&] {
+  on_every_rank(*disc.comm(), [&] {
     for (std::size_t k = 0; k < d.size(); ++k)
       check_facet_point(s.active[k], sim.contact->pairs()[s.active[k].pair], d[k], path);
     if (disc.comm()->getRank() == 0)
@@ -178,7 +176,7 @@ RestartInput read_restart(const Simulation& sim, const std::string& path) {
   // every rank its block of the per-node values and the rest whole (the same refusal on every
   // rank), then each rank's checks of its block, rank 0's of the monitors
   in.checkpoint = output::read_checkpoint_collectively(raw, path, checkpoint_shape(sim, path));
-  output::on_every_rank(raw, [&] {
+  on_every_rank(raw, [&] {
     check_checkpoint(in.checkpoint, sim, path);
     check_time(in.checkpoint, *sim.stepper, path);
     if (comm.getRank() == 0) in.rows = kept_monitors(in.checkpoint, path);
@@ -233,16 +231,15 @@ std::string stop_checkpoint(const Simulation& sim, const RootGather& dofs,
                             const output::Directory& dir, long kept) {
   const std::string path = dir.path("checkpoint.h5");
   const auto& s = sim.state;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "stopped by %s after step %ld (t = %.6g); ",
-                time::signal_name(time::stop_signal()), s.step, s.t);
+  const std::string stopped = format("stopped by %s after step %ld (t = %.6g); ",
+                                     time::signal_name(time::stop_signal()), s.step, s.t);
   if (kept < 0 || kept == s.step) {
     if (kept < 0) save_checkpoint(sim, dofs, dir, "checkpoint.h5");
-    return buf + ("continue with --restart " + path);
+    return stopped + "continue with --restart " + path;
   }
-  return buf + ("continue with --restart " + path + " (step " + std::to_string(kept) +
-                ", on the checkpoint grid: steps " + std::to_string(kept + 1) + " to " +
-                std::to_string(s.step) + " are recomputed, identically)");
+  return stopped + ("continue with --restart " + path + " (step " + std::to_string(kept) +
+                    ", on the checkpoint grid: steps " + std::to_string(kept + 1) + " to " +
+                    std::to_string(s.step) + " are recomputed, identically)");
 }
 
 bool same_file(const std::string& a, const std::string& b) {

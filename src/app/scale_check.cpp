@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "emcontact/contact/active.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/echo.hpp"
 
@@ -32,9 +32,7 @@ struct Box {
 };
 
 std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
+  return format("%.3g", x);
 }
 
 /// docs/THEORY.md §6.3: the smallest max penetration, the round-off of a gap g_N on the master

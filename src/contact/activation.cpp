@@ -3,13 +3,13 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
-#include <cstdio>
 
 #include "emcontact/contact/contact.hpp"
 #include "emcontact/contact/detection.hpp"
 #include "emcontact/contact/law.hpp"
 #include "emcontact/contact/overlap.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/parallel.hpp"
 #include "kernels/math.hpp"
 
@@ -240,15 +240,13 @@ void Contact::check_initial_penetration(const std::string& file) const {
     if (count == 0) continue;
     double deepest = 0;
     Teuchos::reduceAll(*disc_.comm(), Teuchos::REDUCE_MIN, 1, &mine.deepest, &deepest);
-    char buf[512];
-    std::snprintf(buf, sizeof buf,
-                  "%s: Contact/%s: %d slave node%s penetrate%s the master at t = 0 (deepest "
-                  "%.3g, %.3g of the facet size); the bodies must not overlap at the start, "
-                  "and a master's facet normals must face the slave (a rigid plane's 'axis' "
-                  "points toward the slave)",
-                  file.c_str(), pr.name.c_str(), count, count == 1 ? "" : "s",
-                  count == 1 ? "s" : "", -deepest, -deepest / pr.edge);
-    throw InputError(buf);
+    throw InputError(
+        format("%s: Contact/%s: %d slave node%s penetrate%s the master at t = 0 (deepest "
+               "%.3g, %.3g of the facet size); the bodies must not overlap at the start, "
+               "and a master's facet normals must face the slave (a rigid plane's 'axis' "
+               "points toward the slave)",
+               file.c_str(), pr.name.c_str(), count, count == 1 ? "" : "s", count == 1 ? "s" : "",
+               -deepest, -deepest / pr.edge));
   }
   for (std::size_t p = 0; p < pairs_.size(); ++p) check_overlap(pairs_[p], x, file);
   for (const Pair& pr : pairs_)
@@ -271,13 +269,11 @@ void Contact::check_overlap(const Pair& pr, const std::vector<double>& x,
     }
     const Overlap o = overlap_of(points, depth);
     if (o.count == 0) return;
-    char buf[512];
-    std::snprintf(buf, sizeof buf,
-                  "%s: Contact/%s: %d %s node%s lie%s inside the %s body at t = 0 (deepest "
-                  "%.3g, %.3g of the facet size); the bodies must not overlap at the start",
-                  file.c_str(), pr.name.c_str(), o.count, nodes, o.count == 1 ? "" : "s",
-                  o.count == 1 ? "s" : "", name, o.deepest, o.deepest / pr.edge);
-    throw InputError(buf);
+    throw InputError(
+        format("%s: Contact/%s: %d %s node%s lie%s inside the %s body at t = 0 (deepest "
+               "%.3g, %.3g of the facet size); the bodies must not overlap at the start",
+               file.c_str(), pr.name.c_str(), o.count, nodes, o.count == 1 ? "" : "s",
+               o.count == 1 ? "s" : "", name, o.deepest, o.deepest / pr.edge));
   };
   report(pr.slaves, pr.master_body, "slave", "master");
   std::vector<int> master;  // the master surface's nodes
@@ -312,15 +308,12 @@ void Contact::check_facing(const Pair& pr, const std::vector<double>& x,
   if (!(nearest < 1e300)) return;
   // the node check's tolerance (1e-9 of the facet size), and the gap's round-off
   const double tol = std::max(1e-9 * pr.edge, gap_roundoff(pr.edge, c));
-  char buf[512];
-  if (gap_nearest < -tol) {
-    std::snprintf(buf, sizeof buf,
-                  "%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
-                  "centroid %.3g behind the facet it projects into); a master's facet normals "
-                  "must face the slave (a rigid plane's 'axis' points toward the slave)",
-                  file.c_str(), pr.name.c_str(), -gap_nearest);
-    throw InputError(buf);
-  }
+  if (gap_nearest < -tol)
+    throw InputError(
+        format("%s: Contact/%s: the slave body lies behind the rigid master at t = 0 (its "
+               "centroid %.3g behind the facet it projects into); a master's facet normals "
+               "must face the slave (a rigid plane's 'axis' points toward the slave)",
+               file.c_str(), pr.name.c_str(), -gap_nearest));
   if (gap_nearest > tol) return;
   double ns[3] = {0, 0, 0};  // the slave surface's outward normal, area-weighted
   for (const auto& t : pr.slave_facets) {
@@ -331,13 +324,12 @@ void Contact::check_facing(const Pair& pr, const std::vector<double>& x,
     for (int i = 0; i < 3; ++i) ns[i] += fc.area2 * fc.n[i];
   }
   if (!(ns[0] * n[0] + ns[1] * n[1] + ns[2] * n[2] > 0)) return;
-  std::snprintf(buf, sizeof buf,
-                "%s: Contact/%s: the slave surface lies on the rigid master at t = 0 facing the "
-                "same way (its outward normal along the facet's): the slave body lies behind it; "
-                "a master's facet normals must face the slave (a rigid plane's 'axis' points "
-                "toward the slave)",
-                file.c_str(), pr.name.c_str());
-  throw InputError(buf);
+  throw InputError(
+      format("%s: Contact/%s: the slave surface lies on the rigid master at t = 0 facing the "
+             "same way (its outward normal along the facet's): the slave body lies behind it; "
+             "a master's facet normals must face the slave (a rigid plane's 'axis' points "
+             "toward the slave)",
+             file.c_str(), pr.name.c_str()));
 }
 
 }  // namespace emc::contact

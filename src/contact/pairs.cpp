@@ -3,9 +3,9 @@
 #include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/input/echo.hpp"
 #include "kernels/facet.hpp"
 
@@ -152,9 +152,7 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     p.kind = Teuchos::getIntegralValue<Kind>(c, "type");
     p.mu = c.get<double>("friction coefficient");
     if (p.mu != 0 && p.kind != Kind::coulomb) {
-      char mu[32];
-      std::snprintf(mu, sizeof mu, "%g", p.mu);
-      throw InputError(where + "/friction coefficient: " + mu +
+      throw InputError(where + "/friction coefficient: " + format("%g", p.mu) +
                        " is only used with type = coulomb (type is \"" + type + "\")");
     }
     p.close_gap = c.get<bool>("close gap");

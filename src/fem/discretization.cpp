@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "emcontact/error.hpp"
+#include "emcontact/parallel.hpp"
 #include "emcontact/views.hpp"
 #include "kernels/svk.hpp"
 #include "kernels/tet4.hpp"
@@ -19,7 +20,7 @@ Discretization::Discretization(const Model& model, RCP<const Comm> comm)
 Discretization::Discretization(const Model& model, Partition part, RCP<const Comm> comm)
     : model_(model), comm_(comm), part_(std::move(part)) {
   build_maps();
-  build_element_data();
+  on_every_rank(*comm_, [&] { build_element_data(); });  // a refused tet stops every rank
   build_moved_mass();
   build_graph();
   finish_group(svk_);

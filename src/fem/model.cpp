@@ -151,8 +151,6 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
   }
   if (params.isSublist("Loads"))
     m.gravity = vec3(params.sublist("Loads"), "gravity", file + ": Loads");
-  m.integrator =
-      Teuchos::getIntegralValue<kernels::Integrator>(params.sublist("Time"), "integrator");
   if (params.isSublist("Solver") && params.sublist("Solver").isSublist("Assembly")) {
     const auto& a = params.sublist("Solver").sublist("Assembly");
     if (a.isParameter("scatter"))

@@ -100,17 +100,6 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_dirichlet_parameters() {
   return pl;
 }
 
-Teuchos::RCP<const Teuchos::ParameterList> valid_time_parameters() {
-  auto pl = Teuchos::rcp(new Teuchos::ParameterList("Time"));
-  pl->set("integrator", std::string("energy-momentum"), "Time integrator.",
-          string_choice("integrator", {"energy-momentum", "midpoint"},
-                        {"energy-momentum conserving scheme (conserves energy and momenta)",
-                         "implicit midpoint rule"},
-                        std::vector<kernels::Integrator>{kernels::Integrator::energy_momentum,
-                                                         kernels::Integrator::midpoint}));
-  return pl;
-}
-
 Teuchos::RCP<const Teuchos::ParameterList> valid_assembly_parameters() {
   auto pl = Teuchos::rcp(new Teuchos::ParameterList("Assembly"));
   pl->set(

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
 
+#include "emcontact/format.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/echo.hpp"
 
@@ -153,13 +153,12 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 std::string format_double(double x) {
   if (std::isnan(x) || std::isinf(x)) return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
   if (x == std::floor(x) && std::fabs(x) < 1e6) return std::to_string(static_cast<long long>(x));
-  char buf[64];
+  std::string s;
   for (int p = 1; p <= 17; ++p) {
-    std::snprintf(buf, sizeof buf, "%.*g", p, x);
-    if (std::strtod(buf, nullptr) == x) break;
+    s = format("%.*g", p, x);
+    if (std::strtod(s.c_str(), nullptr) == x) break;
   }
   // "1e+06" -> "1e6", "1e-05" -> "1e-5"
-  std::string s = buf;
   const auto e = s.find('e');
   if (e == std::string::npos) return s;
   std::string mantissa = s.substr(0, e), exponent = s.substr(e + 1);

@@ -1,7 +1,7 @@
 // Echoing user text in messages: escaped and cut (emcontact/input/echo.hpp).
 #include "emcontact/input/echo.hpp"
 
-#include <cstdio>
+#include "emcontact/format.hpp"
 
 namespace emc::input {
 namespace {
@@ -21,9 +21,7 @@ std::string escape(unsigned char c) {
       break;
   }
   if (c >= 0x20 && c != 0x7f) return "";
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "\\x%02x", c);
-  return buf;
+  return format("\\x%02x", c);
 }
 
 bool utf8_continuation(unsigned char c) {
@@ -64,9 +62,7 @@ std::string echo_list(const std::vector<std::string>& names, std::size_t max_lis
 }
 
 std::string echo_number(double value) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", value);
-  return buf;
+  return format("%.6g", value);
 }
 
 }  // namespace emc::input

@@ -4,7 +4,6 @@
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <initializer_list>
@@ -13,6 +12,7 @@
 #include <sstream>
 
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/files.hpp"
 
@@ -133,8 +133,7 @@ std::string utf8_text(std::string text, const std::string& file) {
                           "): not text, or UTF-16" + how + "UTF-16 -t UTF-8");
   const auto bad = first_invalid_utf8(text);
   if (bad != std::string::npos) {
-    char hex[8];
-    std::snprintf(hex, sizeof(hex), "0x%02x", static_cast<unsigned char>(text[bad]));
+    const std::string hex = format("0x%02x", static_cast<unsigned char>(text[bad]));
     cannot_read(file, "byte " + std::to_string(bad) + " (line " +
                           std::to_string(line_of(text, bad)) + ", " + hex + ") is not UTF-8" + how +
                           "ISO-8859-1 -t UTF-8 (if that is its encoding)");

@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "emcontact/format.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 #include "emcontact/parallel.hpp"
 
@@ -112,15 +113,14 @@ void DirectMumps::run(int job) {
   dmumps_c(&id);
   const int code = id.INFOG(1);
   if (code >= 0) return;
-  char buf[240];
-  std::snprintf(buf, sizeof buf, "MUMPS %s failed: INFOG(1) = %d, INFOG(2) = %d (%s)",
-                job == 1   ? "analysis"
-                : job == 2 ? "factorisation"
-                           : "solve",
-                code, id.INFOG(2), meaning(code));
+  const std::string message = format("MUMPS %s failed: INFOG(1) = %d, INFOG(2) = %d (%s)",
+                                     job == 1   ? "analysis"
+                                     : job == 2 ? "factorisation"
+                                                : "solve",
+                                     code, id.INFOG(2), meaning(code));
   if (job <= 2) s_->factored = false;
   if (job == 1) s_->analysed = false;
-  throw LinearSolveError(buf);
+  throw LinearSolveError(message);
 }
 
 // Same structure: the same graph object, or (a rebuilt graph) the same global entries in the

@@ -8,12 +8,12 @@
 #include <suitesparse/umfpack.h>
 
 #include <Teuchos_TimeMonitor.hpp>
-#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <string>
 #include <vector>
 
+#include "emcontact/format.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
 
 namespace emc::linalg {
@@ -154,10 +154,8 @@ void DirectUmfpack::analyse(const RCP<const Matrix>& A) {
                           nullptr, &s_->symbolic, s_->control, s_->info);
   if (status != UMFPACK_OK) {
     s_->symbolic = nullptr;
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "UMFPACK analysis failed: status %d (%s)", status,
-                  meaning(status));
-    throw LinearSolveError(buf);
+    throw LinearSolveError(
+        format("UMFPACK analysis failed: status %d (%s)", status, meaning(status)));
   }
   s_->graph = A->getCrsGraph();
   rows_ = A->getRowMap();
@@ -175,10 +173,8 @@ void DirectUmfpack::factor(const RCP<const Matrix>& A) {
                                         &s_->numeric, s_->control, s_->info);
   if (status != UMFPACK_OK) {  // a singular matrix is only a warning to UMFPACK
     s_->free_numeric();
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "UMFPACK factorisation failed: status %d (%s)", status,
-                  meaning(status));
-    throw LinearSolveError(buf);
+    throw LinearSolveError(
+        format("UMFPACK factorisation failed: status %d (%s)", status, meaning(status)));
   }
   ++factorisations_;
 }
@@ -194,9 +190,7 @@ void DirectUmfpack::solve(const Vector& b, Vector& x) {
                                        s_->x.data(), s_->b.data(), s_->numeric, s_->control,
                                        s_->info, s_->Wi.data(), s_->W.data());
   if (status != UMFPACK_OK) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf, "UMFPACK solve failed: status %d (%s)", status, meaning(status));
-    throw LinearSolveError(buf);
+    throw LinearSolveError(format("UMFPACK solve failed: status %d (%s)", status, meaning(status)));
   }
   auto xv = x.getLocalViewHost(Tpetra::Access::OverwriteAll);
   for (std::size_t g = 0; g < n; ++g) xv(s_->row_of[g], 0) = s_->x[g];

@@ -6,9 +6,9 @@
 #include <Teuchos_TimeMonitor.hpp>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 
+#include "emcontact/format.hpp"
 #include "emcontact/linalg/direct_umfpack.hpp"
 #include "emcontact/linalg/rigid_modes.hpp"
 
@@ -194,11 +194,9 @@ int LinearSolver::belos_solve(const RCP<Matrix>& A, const Vector& b, Vector& x, 
   solver->setProblem(problem);
   const Belos::ReturnType ret = solver->solve();
   converged = ret == Belos::Converged;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "Belos %s returned %s after %d iterations (achieved %.3g)",
-                krylov_name().c_str(), converged ? "Converged" : "Unconverged",
-                solver->getNumIters(), solver->achievedTol());
-  message = buf;
+  message =
+      format("Belos %s returned %s after %d iterations (achieved %.3g)", krylov_name().c_str(),
+             converged ? "Converged" : "Unconverged", solver->getNumIters(), solver->achievedTol());
   return solver->getNumIters();
 }
 
@@ -254,13 +252,12 @@ SolveStats LinearSolver::checked_solve(const RCP<Matrix>& A, const Vector& b, Ve
     st.true_residual = bn > 0 ? r.norm2() / bn : r.norm2();
   }
   if (!(st.true_residual <= check_factor_ * tol) && bn > 0) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "linear solver (%s) failed: true relative residual %.3e exceeds %.3e "
-                  "(residual check factor x tolerance); ",
-                  description().c_str(), st.true_residual, check_factor_ * tol);
+    const std::string failed = format(
+        "linear solver (%s) failed: true relative residual %.3e exceeds %.3e "
+        "(residual check factor x tolerance); ",
+        description().c_str(), st.true_residual, check_factor_ * tol);
     prec_ = Teuchos::null;
-    throw LinearSolveError(buf + message);
+    throw LinearSolveError(failed + message);
   }
   return st;
 }

@@ -10,11 +10,11 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
-#include <cstdio>
 #include <cstring>
 #include <utility>
 
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/output/safe_temp.hpp"
 
 namespace emc::output {
@@ -44,9 +44,7 @@ bool is_owned_temporary(const std::string& name) {
 }  // namespace
 
 std::string frame_file_name(long step) {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), "fields_%08ld.h5", step);
-  return buf;
+  return format("fields_%08ld.h5", step);
 }
 
 long frame_step(const std::string& name) {

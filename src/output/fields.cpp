@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -84,9 +85,10 @@ SlabDataset slab(const char* name, hid_t file_type, hid_t mem_type, long long ro
 
 /// A double as "%.17g" (exact round trip, locale independent).
 std::string format_double(double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof(buf), v, std::chars_format::general, 17);
-  return std::string(buf, res.ptr);
+  std::array<char, 64> buf;
+  const auto res =
+      std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, 17);
+  return std::string(buf.data(), res.ptr);
 }
 
 /// An XDMF HDF DataItem: `dims` like "1000 3", `type` "Float"/"Int", precision in bytes.

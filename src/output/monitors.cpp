@@ -1,6 +1,7 @@
 // DIR/monitors.csv: formatting, incremental atomic rewriting, and parsing back.
 #include "emcontact/output/monitors.hpp"
 
+#include <array>
 #include <charconv>
 #include <chrono>
 #include <fstream>
@@ -47,16 +48,17 @@ constexpr const char* kDissipated = "dissipated";
 /// Appends `v` as printf("%.17g") would in the C locale (std::to_chars is specified so),
 /// which round-trips every double exactly.
 void append_double(std::string& out, double v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof(buf), v, std::chars_format::general, 17);
-  out.append(buf, res.ptr);
+  std::array<char, 64> buf;
+  const auto res =
+      std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::general, 17);
+  out.append(buf.data(), res.ptr);
 }
 
 /// Appends an integer in decimal.
 void append_integer(std::string& out, long long v) {
-  char buf[32];
-  const auto res = std::to_chars(buf, buf + sizeof(buf), v);
-  out.append(buf, res.ptr);
+  std::array<char, 32> buf;
+  const auto res = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  out.append(buf.data(), res.ptr);
 }
 
 /// Seconds on the steady clock (never jumps back, unlike the wall clock).

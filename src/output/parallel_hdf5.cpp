@@ -99,69 +99,9 @@ bool write_sets(MPI_Comm comm, const std::string& via, const std::vector<SlabDat
 
 }  // namespace
 
-int rank_of(MPI_Comm comm) {
-  int r = 0;
-  if (comm != MPI_COMM_SELF) MPI_Comm_rank(comm, &r);
-  return r;
-}
-
-bool all_ok(MPI_Comm comm, bool ok) {
-  int mine = ok ? 1 : 0, all = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, comm);
-  return all == 1;
-}
-
-std::string broadcast(MPI_Comm comm, const std::string& s, int root) {
-  long long n = static_cast<long long>(s.size());
-  MPI_Bcast(&n, 1, MPI_LONG_LONG, root, comm);
-  std::string out = rank_of(comm) == root ? s : std::string(static_cast<std::size_t>(n), '\0');
-  if (n > 0) MPI_Bcast(out.data(), static_cast<int>(n), MPI_CHAR, root, comm);
-  return out;
-}
-
-std::string first_error(MPI_Comm comm, const std::string& error) {
-  int mine = error.empty() ? INT_MAX : rank_of(comm), first = INT_MAX;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
-  return first == INT_MAX ? std::string() : broadcast(comm, error, first);
-}
-
 Block block_of(long long n, int rank, int ranks) {
   const long long first = n * rank / ranks, end = n * (rank + 1) / ranks;
   return {first, end - first};
-}
-
-int ranks_of(MPI_Comm comm) {
-  int n = 1;
-  if (comm != MPI_COMM_SELF) MPI_Comm_size(comm, &n);  // a serial program never starts MPI
-  return n;
-}
-
-void on_root(MPI_Comm comm, const std::function<void()>& work) {
-  if (ranks_of(comm) == 1) return work();
-  std::string error;
-  if (rank_of(comm) == 0) {
-    try {
-      work();
-    } catch (const std::exception& e) {
-      error = e.what();
-      if (error.empty()) error = "rank 0 failed";
-    }
-  }
-  error = first_error(comm, error);
-  if (!error.empty()) throw Error(error);
-}
-
-void on_every_rank(MPI_Comm comm, const std::function<void()>& work) {
-  if (ranks_of(comm) == 1) return work();
-  std::string error;
-  try {
-    work();
-  } catch (const std::exception& e) {
-    error = e.what();
-    if (error.empty()) error = "rank " + std::to_string(rank_of(comm)) + " failed";
-  }
-  error = first_error(comm, error);
-  if (!error.empty()) throw Error(error);
 }
 
 Directory shared_directory(MPI_Comm comm, const Directory& root_dir) {

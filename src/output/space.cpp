@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/output/atomic_file.hpp"
 
 namespace emc::output {
@@ -58,19 +58,15 @@ std::string format_bytes(double bytes) {
     bytes /= 1000;
     ++u;
   }
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
-  return buf;
+  return format(u == 0 ? "%.0f %s" : "%.1f %s", bytes, units[u]);
 }
 
 void check_room(const std::string& dir, const OutputSize& need, double free, int every) {
   if (free < 0 || need.total() <= free) return;
-  char frames[64];
-  std::snprintf(frames, sizeof(frames), "%.4g", need.frames);
   throw Error("output directory '" + dir + "': the run would write about " +
               format_bytes(need.total()) + " (" +
               (need.frames > 0
-                   ? std::string(frames) + " frames of " + format_bytes(need.frame_bytes) +
+                   ? format("%.4g", need.frames) + " frames of " + format_bytes(need.frame_bytes) +
                          " with Output/every = " + std::to_string(every) + ", "
                    : std::string()) +
               "monitors.csv " + format_bytes(need.monitors) + ", mesh and checkpoint " +

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <limits>
 
+#include "emcontact/format.hpp"
 #include "emcontact/time/interrupt.hpp"
 #include "emcontact/time/timers.hpp"
 
@@ -14,17 +15,6 @@ namespace emc::time {
 using Teuchos::RCP;
 using Teuchos::rcp;
 using Teuchos::TimeMonitor;
-
-NewtonOptions newton_options(const Teuchos::ParameterList& newton) {
-  NewtonOptions o;
-  o.rtol = newton.get<double>("relative tolerance");
-  o.atol = newton.get<double>("absolute tolerance");
-  o.max_iterations = newton.get<int>("max iterations");
-  o.adaptive_linear_tolerance = newton.get<bool>("adaptive linear tolerance");
-  o.warm_resolves = newton.get<bool>("warm re-solves");
-  o.search_rtol = newton.get<double>("search tolerance");
-  return o;
-}
 
 Newton::Newton(const fem::Discretization& disc, linalg::Elimination& elim,
                linalg::LinearSolver& solver, NewtonOptions opt)
@@ -131,10 +121,8 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
     if (stop_requested(*disc_.comm())) throw Interrupted();  // a signal within a long step
     const fem::AssemblyInfo info = assemble(with_matrix);
     if (!(info.min_detF > 0)) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "element %lld inverted (det F = %.3e) at Newton iterate %d",
-                    info.worst_tet + 1, info.min_detF, it);
-      res.failure = buf;
+      res.failure = format("element %lld inverted (det F = %.3e) at Newton iterate %d",
+                           info.worst_tet + 1, info.min_detF, it);
       return res;
     }
     RCP<Matrix> Ar;
@@ -173,12 +161,9 @@ NewtonResult Newton::iterate(const Vector& u0, const Vector& V0, double dt, Vect
       return res;
     }
     if (it >= opt_.max_iterations) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "Newton did not converge in %d iterations (residual %.3e, initial %.3e, "
-                    "target %.3e)",
-                    it, r, r0, target);
-      res.failure = buf;
+      res.failure = format(
+          "Newton did not converge in %d iterations (residual %.3e, initial %.3e, target %.3e)", it,
+          r, r0, target);
       return res;
     }
     if (!with_matrix) {  // convergence was predicted but did not come: the matrix after all

@@ -38,6 +38,12 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_parameters() {
       "at every step of dt (a steady free motion: a frictionless slide or twist under a constant "
       "tangential force).",
       positive_double());
+  pl->set("integrator", std::string("energy-momentum"), "Time integrator.",
+          string_choice("integrator", {"energy-momentum", "midpoint"},
+                        {"energy-momentum conserving scheme (conserves energy and momenta)",
+                         "implicit midpoint rule"},
+                        std::vector<kernels::Integrator>{kernels::Integrator::energy_momentum,
+                                                         kernels::Integrator::midpoint}));
   return pl;
 }
 
@@ -70,6 +76,25 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_newton_parameters() {
           "relative tolerance; 0: every solve to the relative tolerance.",
           double_at_least(0.0));
   return pl;
+}
+
+Settings read_settings(const Teuchos::ParameterList& time, const Teuchos::ParameterList& newton) {
+  Settings s;
+  s.step.dt = time.get<double>("dt");
+  s.step.end = time.get<double>("end");
+  s.step.max_cuts = time.get<int>("max step cuts");
+  s.step.grow_after = time.get<int>("grow after");
+  s.settle.max_steps = time.get<int>("settle steps");
+  s.settle.tolerance = time.get<double>("settle tolerance");
+  s.integrator = Teuchos::getIntegralValue<kernels::Integrator>(time, "integrator");
+  NewtonOptions& o = s.newton;
+  o.rtol = newton.get<double>("relative tolerance");
+  o.atol = newton.get<double>("absolute tolerance");
+  o.max_iterations = newton.get<int>("max iterations");
+  o.adaptive_linear_tolerance = newton.get<bool>("adaptive linear tolerance");
+  o.warm_resolves = newton.get<bool>("warm re-solves");
+  o.search_rtol = newton.get<double>("search tolerance");
+  return s;
 }
 
 }  // namespace emc::time

@@ -37,13 +37,6 @@ double model_size(const Vector& X) {
 
 }  // namespace
 
-SettleOptions settle_options(const Teuchos::ParameterList& time) {
-  SettleOptions o;
-  o.max_steps = time.get<int>("settle steps");
-  o.tolerance = time.get<double>("settle tolerance");
-  return o;
-}
-
 // §6.7: from (u_k, V = 0) a step of size h gives u_{k+1}; for a mode of frequency w the error
 // of the mid-point configuration (u_k + u_{k+1}) / 2 is that of u_k times 4 / (4 + (w h)^2),
 // and a configuration the step leaves in place is in static equilibrium (the algorithmic

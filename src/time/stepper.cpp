@@ -3,26 +3,26 @@
 #include <Teuchos_CommHelpers.hpp>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <memory>
 
 #include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/time/timers.hpp"
 
 namespace emc::time {
 
-Stepper::Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Elimination& elim,
+Stepper::Stepper(const StepOptions& steps, Newton& newton, linalg::Elimination& elim,
                  std::vector<GO> fixed, contact::Contact* contact, State& state)
     : newton_(newton),
       elim_(elim),
       fixed_(std::move(fixed)),
       contact_(contact && !contact->empty() ? contact : nullptr),
       s_(state),
-      dt_(time.get<double>("dt")),
-      end_(time.get<double>("end")),
-      max_cuts_(time.get<int>("max step cuts")),
-      grow_after_(time.get<int>("grow after")) {
+      dt_(steps.dt),
+      end_(steps.end),
+      max_cuts_(steps.max_cuts),
+      grow_after_(steps.grow_after) {
   if (s_.dt <= 0) s_.dt = dt_;
   if (contact_) {
     loop_ = std::make_unique<contact::ActiveSetLoop>(*contact_, elim_, fixed_);
@@ -56,33 +56,28 @@ void Stepper::check_start(const std::string& file) {
     Teuchos::reduceAll(*disc.comm(), Teuchos::REDUCE_MAX, static_cast<int>(bodies.size()),
                        mine.data(), most.data());
   const double eps = std::numeric_limits<double>::epsilon();
-  char buf[600];
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const auto& body = bodies[b];
     if (body.rigid || body.tet_end == body.tet_begin || most[b] >= eps) continue;
-    char allowed[120] = "a density whose inertia is not lost (it underflows to 0 here)";
-    if (most[b] > 0)
-      std::snprintf(allowed, sizeof allowed,
-                    "a density of at least %.2g with this young, mesh and dt",
-                    body.density * eps / most[b]);
-    std::snprintf(buf, sizeof buf,
-                  "%s: parameter \"Bodies/%s/Material/density\": %.3g gives the body an inertia "
-                  "(2/dt^2) M below the round-off of its stiffness in the Newton matrix (%.2g of "
-                  "its diagonal at most, at Time/dt = %.3g): its motion would be lost; allowed: "
-                  "%s (docs/THEORY.md §1.6)",
-                  file.c_str(), body.name.c_str(), body.density, most[b], dt_, allowed);
-    throw InputError(buf);
+    const std::string allowed =
+        most[b] > 0 ? format("a density of at least %.2g with this young, mesh and dt",
+                             body.density * eps / most[b])
+                    : "a density whose inertia is not lost (it underflows to 0 here)";
+    throw InputError(
+        format("%s: parameter \"Bodies/%s/Material/density\": %.3g gives the body an inertia "
+               "(2/dt^2) M below the round-off of its stiffness in the Newton matrix (%.2g of "
+               "its diagonal at most, at Time/dt = %.3g): its motion would be lost; allowed: "
+               "%s (docs/THEORY.md §1.6)",
+               file.c_str(), body.name.c_str(), body.density, most[b], dt_, allowed.c_str()));
   }
   const double atol = newton_.options().atol;
-  if (atol > 0 && st.scale > 0 && atol >= st.scale) {
-    std::snprintf(buf, sizeof buf,
-                  "%s: parameter \"Solver/Newton/absolute tolerance\": %.3g is not below the "
-                  "size of the residual's terms at the first step (%.3g: inertia, internal and "
-                  "external forces, docs/THEORY.md §1.6): it would accept any iterate; allowed: "
-                  "a value well below %.3g, or 0 (the default: the relative tolerance decides)",
-                  file.c_str(), atol, st.scale, st.scale);
-    throw InputError(buf);
-  }
+  if (atol > 0 && st.scale > 0 && atol >= st.scale)
+    throw InputError(
+        format("%s: parameter \"Solver/Newton/absolute tolerance\": %.3g is not below the "
+               "size of the residual's terms at the first step (%.3g: inertia, internal and "
+               "external forces, docs/THEORY.md §1.6): it would accept any iterate; allowed: "
+               "a value well below %.3g, or 0 (the default: the relative tolerance decides)",
+               file.c_str(), atol, st.scale, st.scale));
 }
 
 bool Stepper::finished() const {
@@ -159,15 +154,13 @@ bool Stepper::crossed_too_deep(const Vector& u0, const Vector& u1, double h,
       contact_->crossed_too_deep(contact_->positions(u0), contact_->positions(u1), active);
   if (d.count == 0) return false;
   const contact::Pair& p = contact_->pairs()[d.pair];
-  char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "%d slave node%s crossed a master facet and ended deeper behind it than "
-                "Contact/%s/max penetration = %.3g (node %d: %.3g behind, approaching at %.3g m/s "
-                "over the step of %.3g s); a smaller Time/dt (or a larger max penetration) lets "
-                "contact catch %s",
-                d.count, d.count == 1 ? "" : "s", p.name.c_str(), p.dmax, d.node, -d.gap,
-                d.closing / h, h, d.count == 1 ? "it" : "them");
-  rep.last_failure = buf;
+  rep.last_failure = format(
+      "%d slave node%s crossed a master facet and ended deeper behind it than "
+      "Contact/%s/max penetration = %.3g (node %d: %.3g behind, approaching at %.3g m/s "
+      "over the step of %.3g s); a smaller Time/dt (or a larger max penetration) lets "
+      "contact catch %s",
+      d.count, d.count == 1 ? "" : "s", p.name.c_str(), p.dmax, d.node, -d.gap, d.closing / h, h,
+      d.count == 1 ? "it" : "them");
   return true;
 }
 
@@ -178,12 +171,10 @@ bool Stepper::restore_energy(Vector& V1, StepReport& rep) {
   const double D = -closure_work_.work;
   const Restoration r = restoration_->restore(*closure_p_, D, closure_work_.roundoff, V1);
   if (!r.ok) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "the gap closure gave %.3e of energy that no compressive velocity update "
-                  "along the contact normals can take back",
-                  closure_work_.work);
-    rep.last_failure = buf;
+    rep.last_failure = format(
+        "the gap closure gave %.3e of energy that no compressive velocity update "
+        "along the contact normals can take back",
+        closure_work_.work);
     return false;
   }
   rep.closure_energy += r.gamma != 0 ? D : 0.0;
@@ -194,12 +185,10 @@ bool Stepper::restore_energy(Vector& V1, StepReport& rep) {
 // state) would loop forever: stop instead.
 void Stepper::check_step_size(double h) const {
   if (std::isfinite(h) && h > 0 && s_.t + h > s_.t) return;
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "step %ld at t = %.6g: the step size %.3g cannot advance time (it must be "
-                "finite, > 0 and above the round-off of t; Time/dt = %.3g)",
-                s_.step + 1, s_.t, h, dt_);
-  throw RunError(buf);
+  throw RunError(
+      format("step %ld at t = %.6g: the step size %.3g cannot advance time (it must be "
+             "finite, > 0 and above the round-off of t; Time/dt = %.3g)",
+             s_.step + 1, s_.t, h, dt_));
 }
 
 StepReport Stepper::advance() {
@@ -256,22 +245,19 @@ StepReport Stepper::advance() {
     }
     ++rep.cuts;
     if (rep.last_failure.find("crossed a master facet") != std::string::npos) {
-      char at[96];
-      std::snprintf(at, sizeof at, "at step %ld with dt = %.3g, ", s_.step + 1, s_.dt);
-      crossing_ = at + rep.last_failure;
+      crossing_ = format("at step %ld with dt = %.3g, ", s_.step + 1, s_.dt) + rep.last_failure;
     }
     if (s_.dt < dt_ / std::ldexp(1.0, max_cuts_) * 1.5) {
-      char buf[256];
-      std::snprintf(buf, sizeof buf,
-                    "step %ld at t = %.6g could not be solved even with dt = %.3g (%d halvings "
-                    "of dt = %.3g, Time/max step cuts): ",
-                    s_.step + 1, s_.t, s_.dt, max_cuts_, dt_);
+      const std::string failed = format(
+          "step %ld at t = %.6g could not be solved even with dt = %.3g (%d halvings "
+          "of dt = %.3g, Time/max step cuts): ",
+          s_.step + 1, s_.t, s_.dt, max_cuts_, dt_);
       // an element inverted after slave nodes crossed the master at a larger step: the cause
       // is the crossing (an impact too fast for Time/dt), named with it
       if (rep.last_failure.rfind("element ", 0) == 0 && !crossing_.empty())
-        throw RunError(buf + rep.last_failure + ", after the steps had been cut because " +
+        throw RunError(failed + rep.last_failure + ", after the steps had been cut because " +
                        crossing_);
-      throw RunError(buf + rep.last_failure);
+      throw RunError(failed + rep.last_failure);
     }
     s_.dt /= 2;
     s_.good_steps = 0;

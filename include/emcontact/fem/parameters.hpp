@@ -19,10 +19,6 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_load_parameters();
 /// surface's nodes is fixed to zero.
 Teuchos::RCP<const Teuchos::ParameterList> valid_dirichlet_parameters();
 
-/// The part of `Time` the fem module reads (the element kernels' integrator): `integrator`
-/// ("energy-momentum" or "midpoint"; its validator gives the kernels::Integrator).
-Teuchos::RCP<const Teuchos::ParameterList> valid_time_parameters();
-
 /// Valid parameters of `Solver/Assembly`: `scatter` (coloured or atomic, see
 /// emcontact/fem/scatter.hpp).
 Teuchos::RCP<const Teuchos::ParameterList> valid_assembly_parameters();

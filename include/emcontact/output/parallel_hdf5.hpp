@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "emcontact/output/open_directory.hpp"
+#include "emcontact/parallel.hpp"
 
 namespace emc::output {
 
@@ -31,27 +32,6 @@ struct Block {
 };
 Block block_of(long long n, int rank, int ranks);
 
-/// This rank of `comm`; 0 for MPI_COMM_SELF without asking MPI.
-int rank_of(MPI_Comm comm);
-/// True on every rank when `ok` on every rank (collective).
-bool all_ok(MPI_Comm comm, bool ok);
-/// `root`'s string on every rank (collective).
-std::string broadcast(MPI_Comm comm, const std::string& s, int root = 0);
-
-/// The number of ranks of `comm`; 1 for MPI_COMM_SELF without asking MPI (a serial program that
-/// never starts MPI writes its files with MPI_COMM_SELF).
-int ranks_of(MPI_Comm comm);
-
-/// Collective over `comm`: runs `work` on rank 0 only; if it throws, every rank throws
-/// emc::Error with its message (so that the other ranks do not wait for rank 0 forever).
-void on_root(MPI_Comm comm, const std::function<void()>& work);
-
-/// Collective over `comm`: runs `work` on every rank; if it throws on any, every rank throws
-/// emc::Error with the lowest failing rank's message (a refusal found on one rank only, or on
-/// each rank for its own part, stops every rank with one line and no hang). One rank: `work`
-/// alone, its exception as thrown.
-void on_every_rank(MPI_Comm comm, const std::function<void()>& work);
-
 /// Collective over `comm`: this rank's descriptor of rank 0's output directory `root_dir`
 /// (ignored elsewhere): rank 0's own copy; the other ranks open the path rank 0 gives and
 /// refuse (emc::Error on every rank) a directory that is not the one rank 0 holds (another
@@ -66,8 +46,5 @@ Directory shared_directory(MPI_Comm comm, const Directory& root_dir);
 void write_hdf5_collectively(MPI_Comm comm, const Directory& dir, const std::string& name,
                              const std::vector<SlabDataset>& sets,
                              const std::function<void(hid_t file)>& attributes = {});
-
-/// The error text of the lowest rank that has one, on every rank ("" if none; collective).
-std::string first_error(MPI_Comm comm, const std::string& error);
 
 }  // namespace emc::output

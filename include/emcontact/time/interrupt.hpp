@@ -24,6 +24,13 @@ class Interrupted : public Error {
   Interrupted() : Error(std::string("stopped by ") + signal_name(stop_signal())) {}
 };
 
+/// The time loop stopped by a signal after saving what a restart needs: the message says where
+/// to continue from. Handled by type (never by its text).
+class Stopped : public RunError {
+ public:
+  explicit Stopped(const std::string& what) : RunError(what) {}
+};
+
 /// The flag a signal handler sets to the signal's number (async-signal-safe); 0: none.
 volatile std::sig_atomic_t& stop_flag();
 

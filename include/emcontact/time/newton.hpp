@@ -8,7 +8,6 @@
 // iterate itself only at the round-off floor (atol applies to Newton's own iterates). No step is
 // ever accepted unconverged (a search solve of the active-set loop, docs/THEORY.md §6.9, stops
 // earlier, but the step's last solve is a full one).
-#include <Teuchos_ParameterList.hpp>
 #include <functional>
 #include <string>
 #include <vector>
@@ -16,18 +15,9 @@
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
+#include "emcontact/time/settings.hpp"
 
 namespace emc::time {
-
-struct NewtonOptions {
-  double rtol = 1e-10, atol = 0;
-  int max_iterations = 25;
-  bool adaptive_linear_tolerance = true;  ///< see Newton::linear_tolerance
-  bool skip_last_matrix = true;           ///< no Newton matrix at an iterate predicted to converge
-  bool warm_resolves = true;  ///< the active-set loop's re-solves start from the last solve
-  double search_rtol = 0;     ///< the active-set loop's search solves (0: to rtol)
-};
-NewtonOptions newton_options(const Teuchos::ParameterList& newton);
 
 /// docs/THEORY.md §1.6: the sizes at a step's start (u_{n+1} = u_n) that the tolerances are
 /// checked against before the first step.

@@ -3,7 +3,6 @@
 // V_{n+1} = 2 (u_{n+1} - u_n)/dt - V_n, with the active-set loop of contact (§6) around
 // Newton. A step whose Newton fails is retried with dt/2 (up to `max step cuts` times); dt
 // doubles back toward the nominal dt after `grow after` good steps.
-#include <Teuchos_ParameterList.hpp>
 #include <array>
 #include <memory>
 #include <string>
@@ -50,13 +49,6 @@ struct StepReport {
   contact::StepContactStats contact;
 };
 
-/// Settling to static equilibrium before t = 0 (docs/THEORY.md §6.7, `Time/settle ...`).
-struct SettleOptions {
-  int max_steps = 0;  ///< 0: no settling
-  /// done when a step of dt from rest gives a kinetic energy below tolerance times the
-  /// elastic energy, with the same active set
-  double tolerance = 1e-12;
-};
 struct SettleReport {
   int steps = 0;              ///< settling steps taken
   int newton_iterations = 0;  ///< over all of them
@@ -68,14 +60,11 @@ struct SettleReport {
   bool moved_away = false;    ///< stopped: a body moved farther than the bodies' extent
 };
 
-/// The settling options of the validated `Time` sublist.
-SettleOptions settle_options(const Teuchos::ParameterList& time);
-
 class Stepper {
  public:
-  /// `time` is the validated `Time` sublist; `fixed` the owned Dirichlet dofs; `contact` may
-  /// be null (no contact pairs).
-  Stepper(const Teuchos::ParameterList& time, Newton& newton, linalg::Elimination& elim,
+  /// `steps`: the time loop's settings; `fixed` the owned Dirichlet dofs; `contact` may be
+  /// null (no contact pairs).
+  Stepper(const StepOptions& steps, Newton& newton, linalg::Elimination& elim,
           std::vector<GO> fixed, contact::Contact* contact, State& state);
 
   bool finished() const;

@@ -16,6 +16,7 @@
 #include "emcontact/input/detail.hpp"
 #include "emcontact/input/echo.hpp"
 #include "emcontact/input/input.hpp"
+#include "emcontact/time/parameters.hpp"
 #include "kernels/em_tet4.hpp"
 
 namespace {
@@ -165,6 +166,14 @@ TEST_F(InputTest, IntegralValueOfChoices) {
   EXPECT_EQ(
       Teuchos::getIntegralValue<emc::kernels::Integrator>(in.params->sublist("Time"), "integrator"),
       emc::kernels::Integrator::midpoint);
+  // the time module's settings read it once, with the rest of `Time` and `Solver/Newton`
+  const auto& P = *in.params;
+  const auto ts =
+      emc::time::read_settings(P.sublist("Time"), P.sublist("Solver").sublist("Newton"));
+  EXPECT_EQ(ts.integrator, emc::kernels::Integrator::midpoint);
+  EXPECT_EQ(ts.step.dt, P.sublist("Time").get<double>("dt"));
+  EXPECT_EQ(ts.settle.max_steps, 0);
+  EXPECT_EQ(ts.newton.max_iterations, 25);
 }
 
 // ---------------------------------------------------------------- bad values
