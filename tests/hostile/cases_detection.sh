@@ -24,7 +24,7 @@ hostile_crossing_the_ground_in_one_step_stops() {
 hostile_crossing_the_ground_is_cut() {
   cp "$HERE/../regression/drop.xml" in.xml
   local rc=0
-  timeout -k 5 120 "$EMC" in.xml --set Time/dt=1 --set Time/end=1 --output out \
+  timeout -k 5 "$(safety 120)" "$EMC" in.xml --set Time/dt=1 --set Time/end=1 --output out \
     >last.out 2>last.err || rc=$?
   [ "$rc" -le 1 ] || { echo "exit $rc"; cat last.err; return 1; }
   expect_short_err 1

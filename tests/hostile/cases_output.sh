@@ -136,7 +136,7 @@ hostile_two_runs_one_directory_locked() {
   "$EMC" in.xml "${EMC_QUIET[@]}" --set Output/every=0 --set Time/end=1000 --output out \
     >first.log 2>&1 &
   local pid=$! i
-  for i in $(seq 600); do [ -s out/monitors.csv ] && break; sleep 0.1; done
+  for i in $(seq $(($(safety 60) * 10))); do [ -s out/monitors.csv ] && break; sleep 0.1; done
   [ -s out/monitors.csv ] || { kill -KILL $pid; echo "the first run did not start"; return 1; }
   local rc=0
   expect_exit 1 "${MPIRUN[@]}" -np 2 "$EMC" in.xml "${EMC_QUIET[@]}" --output out || rc=1

@@ -52,7 +52,7 @@ hostile_two_ranks_fields_not_written_through_a_swapped_directory() {
   "${MPIRUN[@]}" -np 2 "$EMC" in.xml --set Time/end=1000 --set Output/every=1 \
     --set Output/progress=false --set Output/plot=false --output t >run.log 2>&1 &
   local pid=$! i
-  for i in $(seq 600); do [ -s t/fields_00000002.h5 ] && break; sleep 0.1; done
+  for i in $(seq $(($(safety 60) * 10))); do [ -s t/fields_00000002.h5 ] && break; sleep 0.1; done
   [ -s t/fields_00000002.h5 ] || { kill -KILL $pid; echo "the run did not start"; return 1; }
   ln -s victim t.old
   /usr/bin/python3 - <<'PY' || { rm t.old && mv t t.old && ln -s victim t; }
@@ -64,7 +64,7 @@ if libc.renameat2(AT_FDCWD, b"t", AT_FDCWD, b"t.old", RENAME_EXCHANGE) != 0:
 PY
   local before
   before=$(ls t.old | grep -c '^fields_0')
-  for i in $(seq 600); do [ "$(ls t.old | grep -c '^fields_0')" -gt $((before + 2)) ] && break; sleep 0.1; done
+  for i in $(seq $(($(safety 60) * 10))); do [ "$(ls t.old | grep -c '^fields_0')" -gt $((before + 2)) ] && break; sleep 0.1; done
   kill -TERM $pid
   local rc=0
   wait $pid || rc=$?

@@ -248,7 +248,7 @@ hostile_output_directory_renamed_during_run_not_followed() {
   "$EMC" in.xml "${RST_QUIET[@]}" --set Time/end=1000 --set Output/every=0 --output t \
     >run.log 2>&1 &
   local pid=$! i
-  for i in $(seq 600); do [ -s t/monitors.csv ] && break; sleep 0.1; done
+  for i in $(seq $(($(safety 60) * 10))); do [ -s t/monitors.csv ] && break; sleep 0.1; done
   [ -s t/monitors.csv ] || { kill -KILL $pid; echo "the run did not start"; return 1; }
   # in one step (renameat2 RENAME_EXCHANGE): t becomes the link, the run's directory t.old; a
   # file system without it gets mv and ln (a write in between fails: exit 1, no SIGTERM line)

@@ -64,9 +64,9 @@ hostile_time_not_finite_refused() {
 
 # --- SIGTERM: during setup a message (within a long step: cases_solver.sh) ---
 
-# wait_sigterm_caught PID: until PID has its SIGTERM handler (30 s at most).
+# wait_sigterm_caught PID: until PID has its SIGTERM handler (safety 30 s).
 wait_sigterm_caught() {
-  for _ in $(seq 300); do
+  for _ in $(seq $(($(safety 30) * 10))); do
     local mask
     mask=$(awk '/^SigCgt:/ { print $2 }' "/proc/$1/status" 2>/dev/null) || return 1
     [ -n "$mask" ] && [ $((16#$mask & 0x4000)) -ne 0 ] && return 0
@@ -127,7 +127,7 @@ p, pos = sys.argv[1], int(sys.argv[2])
 b = bytearray(open(p, 'rb').read()); b[pos] ^= 0x5a; open(p, 'wb').write(bytes(b))" \
       f/checkpoint.h5 $pos
     local rc=0
-    timeout -k 5 60 "$EMC" in.xml --set Time/end=0.08 --output f --restart f/checkpoint.h5 \
+    timeout -k 5 "$(safety 60)" "$EMC" in.xml --set Time/end=0.08 --output f --restart f/checkpoint.h5 \
       >last.out 2>last.err || rc=$?
     if [ $rc -eq 0 ]; then
       cmp -s ref/monitors.csv f/monitors.csv || { echo "flip at $pos accepted, other rows"; return 1; }
@@ -389,7 +389,7 @@ hostile_restart_after_sigterm_identical() {
   expect_exit 0 "$EMC" in.xml "${opts[@]}" --output A
   "$EMC" in.xml "${opts[@]}" --output C >c.log 2>&1 &
   local pid=$!
-  for _ in $(seq 600); do
+  for _ in $(seq $(($(safety 30) * 20))); do
     [ -f C/monitors.csv ] && [ "$(wc -l <C/monitors.csv)" -ge 8 ] && break
     sleep 0.05
   done

@@ -3,9 +3,10 @@
 # solver counts and tolerances that cannot work, and ranks started with different inputs.
 # No case asserts a duration: each waits for a line or a file, and its timeout is a safety net.
 
-# wait_for_line FILE REGEX [TENTHS]: until FILE has a line matching REGEX (60 s at most).
+# wait_for_line FILE REGEX [SECONDS]: until FILE has a line matching REGEX (a safety timeout of
+# SECONDS, default 60, on a quiet machine).
 wait_for_line() {
-  for _ in $(seq "${3:-600}"); do
+  for _ in $(seq $(($(safety "${3:-60}") * 10))); do
     grep -Eq -- "$2" "$1" 2>/dev/null && return 0
     sleep 0.1
   done
@@ -13,9 +14,9 @@ wait_for_line() {
   return 1
 }
 
-# wait_caught PID SIGNAL_NUMBER: until PID has a handler for the signal (30 s at most).
+# wait_caught PID SIGNAL_NUMBER: until PID has a handler for the signal (safety 30 s).
 wait_caught() {
-  for _ in $(seq 300); do
+  for _ in $(seq $(($(safety 30) * 10))); do
     local mask
     mask=$(awk '/^SigCgt:/ { print $2 }' "/proc/$1/status" 2>/dev/null) || return 1
     [ -n "$mask" ] && [ $((16#$mask >> ($2 - 1) & 1)) -ne 0 ] && return 0
@@ -25,14 +26,16 @@ wait_caught() {
 }
 
 # stop_and_wait PID SIGNAL: sends SIGNAL and waits for PID (its exit code in STOP_RC), with a
-# 120 s safety net (then SIGKILL).
+# safety net (120 s quiet, then SIGKILL).
 stop_and_wait() {
   kill "-$2" "$1"
-  for _ in $(seq 1200); do
+  local secs
+  secs=$(safety 120)
+  for _ in $(seq $((secs * 10))); do
     kill -0 "$1" 2>/dev/null || break
     sleep 0.1
   done
-  kill -KILL "$1" 2>/dev/null && echo "still running 120 s after SIG$2"
+  kill -KILL "$1" 2>/dev/null && echo "still running $secs s after SIG$2"
   STOP_RC=0
   wait "$1" || STOP_RC=$?
 }
@@ -111,7 +114,7 @@ signal_during_run() {
     --set "Bodies/block/Initial/angular velocity={0,0,5}")
   run_bg in.xml "${opts[@]}" --output out
   local pid=$!
-  for _ in $(seq 600); do
+  for _ in $(seq $(($(safety 60) * 10))); do
     [ -f out/monitors.csv ] && [ "$(wc -l <out/monitors.csv)" -ge 6 ] && break
     sleep 0.1
   done
