@@ -7,7 +7,7 @@
 # CMake"). Included by the top-level CMakeLists.txt after the targets.
 include(CMakePackageConfigHelpers)
 set(EMC_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/emcontact)
-set(EMC_MODULES base input mesh fem linalg contact time output app)
+set(EMC_MODULES base input mesh fem linalg contact time output os app)
 list(TRANSFORM EMC_MODULES PREPEND emc_ OUTPUT_VARIABLE EMC_MODULE_TARGETS)
 
 install(TARGETS emcontact RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

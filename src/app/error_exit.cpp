@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <thread>
 
-#include "emcontact/app/signals.hpp"
+#include "emcontact/os/signals.hpp"
 
 namespace emc::app {
 
@@ -24,7 +24,7 @@ ErrorExit::~ErrorExit() {
 
 int ErrorExit::fail(const std::string& message, int code, double wait_seconds) const {
   const std::string line = "error: " + message + "\n";
-  signals_ending(code);
+  os::signals_ending(code);
   if (size_ == 1) {
     std::fputs(line.c_str(), stderr);
     return code;

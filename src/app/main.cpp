@@ -12,12 +12,12 @@
 
 #include "emcontact/app/error_exit.hpp"
 #include "emcontact/app/kokkos_options.hpp"
-#include "emcontact/app/memory.hpp"
 #include "emcontact/app/run.hpp"
 #include "emcontact/app/scale_check.hpp"
 #include "emcontact/app/shared_input.hpp"
-#include "emcontact/app/signals.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/os/memory.hpp"
+#include "emcontact/os/signals.hpp"
 #include "emcontact/output/hdf5_file.hpp"
 
 namespace {
@@ -43,7 +43,7 @@ int fail_before_start(const std::string& message) {
 
 int main(int argc, char** argv) {
   // a signal from here on ends the run with its one-line message (held until MPI has started)
-  emc::app::install_stop_handlers();
+  emc::os::install_stop_handlers();
   // --help and --version answer before MPI and Kokkos start
   const std::string early = emc::app::early_option(argc, argv);
   if (!early.empty()) {
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
       std::cout << (early == "help" ? emc::app::usage() : emc::app::version()) << std::endl;
     return 0;
   }
-  emc::app::keep_freed_memory();  // before MPI and Kokkos allocate
+  emc::os::keep_freed_memory();  // before MPI and Kokkos allocate
   // Kokkos parses its options in the ScopeGuard and throws on a bad one: they are checked
   // first, and anything else it throws still ends in one line
   std::optional<Tpetra::ScopeGuard> scope;
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   auto comm = Tpetra::getDefaultComm();
   const bool root = comm->getRank() == 0;
   const emc::app::ErrorExit error_exit;
-  emc::app::stop_handlers_ready(comm->getRank());
+  emc::os::stop_handlers_ready(comm->getRank());
   try {
     // every rank runs rank 0's command line (an MPMD launch may give the ranks others)
     auto args = emc::app::rank0_arguments(argc, argv, *comm);
@@ -97,21 +97,19 @@ int main(int argc, char** argv) {
             "ranks)\n",
             s.contact_nodes, s.contact_remote, s.contact_bytes, s.contact_imports);
     }
-    const std::string memory = emc::app::gather_peak_memory(*comm);  // collective
+    const std::string memory = emc::os::gather_peak_memory(*comm);  // collective
     if (root) std::printf("%s\n", memory.c_str());
     std::fflush(stdout);
     Teuchos::TimeMonitor::summarize(comm.ptr(), std::cout, false, true, false);
     return 0;
   } catch (const emc::Error& e) {
     // a solver's out-of-memory, reported as a failed step
-    if (emc::app::is_out_of_memory(e))
-      return error_exit.fail(emc::app::out_of_memory_message(e), 1);
+    if (emc::os::is_out_of_memory(e)) return error_exit.fail(emc::os::out_of_memory_message(e), 1);
     return error_exit.fail(emc::app::with_step_failure_hint(e.what()), 1);
   } catch (const std::exception& e) {
     // out of memory (std::bad_alloc, or Kokkos' allocation failure) is a model too large for
     // the machine: one line naming its size, exit 1
-    if (emc::app::is_out_of_memory(e))
-      return error_exit.fail(emc::app::out_of_memory_message(e), 1);
+    if (emc::os::is_out_of_memory(e)) return error_exit.fail(emc::os::out_of_memory_message(e), 1);
     return error_exit.fail(e.what(), 2);
   }
 }

@@ -2,12 +2,12 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
-#include "emcontact/app/memory.hpp"
-#include "emcontact/app/mesh_process.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/format.hpp"
 #include "emcontact/input/echo.hpp"
 #include "emcontact/mesh/generate.hpp"
+#include "emcontact/os/memory.hpp"
+#include "emcontact/os/mesh_process.hpp"
 #include "emcontact/parallel.hpp"
 
 namespace emc::app {
@@ -74,7 +74,7 @@ void check_model_size(double tets, double memory_tets, const std::string& what, 
     throw InputError(what + ", more than the limit of " + count(mesh::kMaxTets) +
                      " tetrahedra in all the bodies together; allowed: a coarser mesh (a "
                      "larger Mesh/size)");
-  check_memory(memory_tets, comm.getSize(), local_ranks, what);
+  os::check_memory(memory_tets, comm.getSize(), local_ranks, what);
 }
 
 /// "file: Bodies: the meshes would hold about N tetrahedra (Bodies/a: n_a, ...)".
@@ -132,10 +132,10 @@ std::vector<mesh::BodyMesh> build_meshes(const Teuchos::ParameterList& params,
   if (comm.getRank() == 0) {
     try {
       // in a child process: Gmsh's peak memory is not rank 0's
-      meshes = build_in_child_process(
+      meshes = os::build_in_child_process(
           [&] { return build_on_root(bodies, input_dir, file, comm, local_ranks); });
     } catch (const std::exception& e) {
-      error = is_out_of_memory(e) ? out_of_memory_message(e) : e.what();
+      error = os::is_out_of_memory(e) ? os::out_of_memory_message(e) : e.what();
       if (error.empty()) error = "mesh generation failed";
     }
   }
@@ -150,7 +150,7 @@ std::vector<mesh::BodyMesh> build_meshes(const Teuchos::ParameterList& params,
     tets += m.body_tets();
     nodes += m.num_nodes();
   }
-  note_model_size(tets, nodes, comm.getSize(), local_ranks);
+  os::note_model_size(tets, nodes, comm.getSize(), local_ranks);
   return meshes;
 }
 

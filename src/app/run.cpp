@@ -14,22 +14,23 @@
 #include "emcontact/app/input_schema.hpp"
 #include "emcontact/app/meshes.hpp"
 #include "emcontact/app/output_dir.hpp"
-#include "emcontact/app/plot.hpp"
 #include "emcontact/app/progress.hpp"
 #include "emcontact/app/restart.hpp"
 #include "emcontact/app/root_gather.hpp"
 #include "emcontact/app/scale_check.hpp"
 #include "emcontact/app/shared_input.hpp"
-#include "emcontact/app/signals.hpp"
 #include "emcontact/app/simulation.hpp"
 #include "emcontact/app/time_loop.hpp"
 #include "emcontact/app/writers.hpp"
 #include "emcontact/contact/contact.hpp"
+#include "emcontact/contact/parameters.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/fem/discretization.hpp"
 #include "emcontact/format.hpp"
 #include "emcontact/linalg/elimination.hpp"
 #include "emcontact/linalg/linear_solver.hpp"
+#include "emcontact/os/plot.hpp"
+#include "emcontact/os/signals.hpp"
 #include "emcontact/output/fields.hpp"
 #include "emcontact/output/monitors.hpp"
 #include "emcontact/output/parallel_hdf5.hpp"
@@ -103,7 +104,8 @@ std::unique_ptr<Simulation> setup(const Options& opt, RCP<const Comm> comm) {
   const time::Settings ts =
       time::read_settings(P.sublist("Time"), P.sublist("Solver").sublist("Newton"));
   sim->model.integrator = ts.integrator;  // the time module's choice, the fem kernels' stress
-  auto pairs = contact::build_pairs(P, sim->model, opt.input);
+  auto pairs =
+      contact::build_pairs(contact::read_pair_settings(P, opt.input), sim->model, opt.input);
   // before the element data are built; rank 0 fits (it holds every tet): its refusal on all
   on_every_rank(*comm, [&] { contact::mark_massless_slaves(pairs, sim->model, opt.input); });
   // rank 0 hands out the tets: from here on each rank holds its own and a layer of ghosts
@@ -254,9 +256,9 @@ Summary run(const Options& opt, RCP<const Comm> comm) {
   comm->barrier();
   sum.setup_seconds = clock.totalElapsedTime(true);
   const LoopStart start = first_rows(*sim, opt, out, o, sum);
-  signals_stop_time_loop();
+  os::signals_stop_time_loop();
   time_loop(*sim, o.w, o.dir, progress, start, sum);
-  if (root && out.plot) plot_monitors(o.output_dir->dir());
+  if (root && out.plot) os::plot_monitors(o.output_dir->dir());
   sum.steps = sim->state.step - sum.first_step;  // the steps this run computed
   sum.time = sim->state.t;
   contact_traffic(*sim, sum);

@@ -1,6 +1,5 @@
 #include "emcontact/contact/pairs.hpp"
 
-#include <Teuchos_StandardParameterEntryValidators.hpp>
 #include <algorithm>
 #include <cmath>
 
@@ -135,35 +134,20 @@ std::vector<double> positions(const fem::Model& model, const std::vector<double>
   return x;
 }
 
-std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::Model& model,
+std::vector<Pair> build_pairs(const std::vector<PairSettings>& settings, const fem::Model& model,
                               const std::string& file) {
   std::vector<Pair> pairs;
-  if (!params.isSublist("Contact")) return pairs;
-  const auto& cl = params.sublist("Contact");
   const auto x0 = positions(model, {});
-  for (auto it = cl.begin(); it != cl.end(); ++it) {
-    const std::string name = cl.name(it);
-    if (!cl.isSublist(name)) continue;
-    const auto& c = cl.sublist(name);
-    const std::string where = file + ": Contact/" + name;
+  for (const PairSettings& c : settings) {
+    const std::string where = file + ": Contact/" + c.name;
     Pair p;
-    p.name = name;
-    const std::string type = c.get<std::string>("type");
-    p.kind = Teuchos::getIntegralValue<Kind>(c, "type");
-    p.mu = c.get<double>("friction coefficient");
-    if (p.mu != 0 && p.kind != Kind::coulomb) {
-      throw InputError(where + "/friction coefficient: " + format("%g", p.mu) +
-                       " is only used with type = coulomb (type is \"" + type + "\")");
-    }
-    p.close_gap = c.get<bool>("close gap");
-    p.massless_slave = c.get<bool>("massless slave");
-    if (p.massless_slave && p.close_gap)
-      throw InputError(where +
-                       ": massless slave = true and close gap = true cannot be combined "
-                       "(the closure gives its energy back through the inverse mass matrix, "
-                       "which massless nodes do not have); allowed: one of them");
-    const SurfaceRef s = parse_ref(model, c.get<std::string>("slave"), where + "/slave");
-    const SurfaceRef m = parse_ref(model, c.get<std::string>("master"), where + "/master");
+    p.name = c.name;
+    p.kind = c.kind;
+    p.mu = c.mu;
+    p.close_gap = c.close_gap;
+    p.massless_slave = c.massless_slave;
+    const SurfaceRef s = parse_ref(model, c.slave, where + "/slave");
+    const SurfaceRef m = parse_ref(model, c.master, where + "/master");
     const fem::Body& sb = model.bodies[s.body];
     const fem::Body& mb = model.bodies[m.body];
     if (sb.rigid)
@@ -189,8 +173,7 @@ std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::M
     p.rigid_master = mb.rigid;
     p.edge = 2 * half_mean_edge(p.facets, x0);
     if (!mb.rigid && !m.surface.empty()) add_rest_of_boundary(mb, p);
-    p.dmax = c.get<double>("max penetration");
-    if (p.dmax <= 0) p.dmax = 0.5 * p.edge;
+    p.dmax = c.dmax > 0 ? c.dmax : 0.5 * p.edge;
     pairs.push_back(std::move(p));
   }
   return pairs;

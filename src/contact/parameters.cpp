@@ -2,6 +2,8 @@
 #include "emcontact/contact/parameters.hpp"
 
 #include "emcontact/contact/pairs.hpp"
+#include "emcontact/error.hpp"
+#include "emcontact/format.hpp"
 #include "emcontact/input/validators.hpp"
 
 namespace emc::contact {
@@ -69,6 +71,39 @@ Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters() {
           "full stick. The work of friction is the monitors' dissipated column.",
           double_at_least(0.0));
   return pl;
+}
+
+std::vector<PairSettings> read_pair_settings(const Teuchos::ParameterList& params,
+                                             const std::string& file) {
+  std::vector<PairSettings> out;
+  if (!params.isSublist("Contact")) return out;
+  const auto& cl = params.sublist("Contact");
+  for (auto it = cl.begin(); it != cl.end(); ++it) {
+    const std::string name = cl.name(it);
+    if (!cl.isSublist(name)) continue;
+    const auto& c = cl.sublist(name);
+    const std::string where = file + ": Contact/" + name;
+    PairSettings p;
+    p.name = name;
+    p.type = c.get<std::string>("type");
+    p.kind = Teuchos::getIntegralValue<Kind>(c, "type");
+    p.mu = c.get<double>("friction coefficient");
+    if (p.mu != 0 && p.kind != Kind::coulomb)
+      throw InputError(where + "/friction coefficient: " + format("%g", p.mu) +
+                       " is only used with type = coulomb (type is \"" + p.type + "\")");
+    p.close_gap = c.get<bool>("close gap");
+    p.massless_slave = c.get<bool>("massless slave");
+    if (p.massless_slave && p.close_gap)
+      throw InputError(where +
+                       ": massless slave = true and close gap = true cannot be combined "
+                       "(the closure gives its energy back through the inverse mass matrix, "
+                       "which massless nodes do not have); allowed: one of them");
+    p.slave = c.get<std::string>("slave");
+    p.master = c.get<std::string>("master");
+    p.dmax = c.get<double>("max penetration");
+    out.push_back(std::move(p));
+  }
+  return out;
 }
 
 }  // namespace emc::contact

@@ -3,7 +3,6 @@
 // 3-node facets of a master surface (a deformable body's boundary or a rigid surface body).
 // Node numbering of the contact geometry: deformable nodes keep their global id n in
 // [0, num_nodes); rigid nodes are num_nodes + k, k indexing Model::rigid_X.
-#include <Teuchos_ParameterList.hpp>
 #include <array>
 #include <string>
 #include <vector>
@@ -35,9 +34,22 @@ struct Pair {
   std::vector<int> tri_start, slave_tris;
 };
 
-/// Builds the pairs of the `Contact` section (empty if there is none). Throws InputError
+/// One `Contact/<pair>` sublist as read (contact::read_pair_settings; the surfaces not yet
+/// found in the model).
+struct PairSettings {
+  std::string name;  ///< the sublist's name
+  std::string type;  ///< `type` as spelled
+  Kind kind = Kind::full_stick;
+  double mu = 0;           ///< `friction coefficient`
+  bool close_gap = false;  ///< `close gap`
+  bool massless_slave = false;
+  std::string slave, master;  ///< `body` or `body/surface`
+  double dmax = 0;            ///< `max penetration` (0: automatic)
+};
+
+/// Builds the pairs of the `Contact` section's settings (none if it has none). Throws InputError
 /// naming `file` and the parameter for unknown bodies/surfaces or a rigid slave.
-std::vector<Pair> build_pairs(const Teuchos::ParameterList& params, const fem::Model& model,
+std::vector<Pair> build_pairs(const std::vector<PairSettings>& settings, const fem::Model& model,
                               const std::string& file);
 
 /// docs/THEORY.md §6.8: marks the slave nodes of the pairs with `massless slave` in

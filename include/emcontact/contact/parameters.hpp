@@ -2,6 +2,10 @@
 // The `Contact` part of the input: declared here, put in the input's schema by the app (which
 // also cross-checks the body names, see emc::app::input_schema).
 #include <Teuchos_ParameterList.hpp>
+#include <string>
+#include <vector>
+
+#include "emcontact/contact/pairs.hpp"
 
 namespace emc::contact {
 
@@ -15,5 +19,11 @@ namespace emc::contact {
 /// - `max penetration` (double >= 0, default 0 = automatic: half the mean edge of the master's
 ///   facets): a slave node is activated only while its penetration is below it.
 Teuchos::RCP<const Teuchos::ParameterList> valid_pair_parameters();
+
+/// The pairs of the validated input's `Contact` section (none if it has none), read once at
+/// set-up. Throws InputError naming `file` and the parameter for a friction coefficient without
+/// type = coulomb, or a massless slave with close gap.
+std::vector<PairSettings> read_pair_settings(const Teuchos::ParameterList& params,
+                                             const std::string& file);
 
 }  // namespace emc::contact

@@ -9,7 +9,7 @@
 
 #include "emcontact/types.hpp"
 
-namespace emc::app {
+namespace emc::os {
 
 /// With glibc, and unless GLIBC_TUNABLES is set (the user's own malloc settings win): no
 /// allocation is served by its own mmap, and the heap's free top is never trimmed. Every Newton
@@ -70,4 +70,4 @@ std::string peak_memory_line(const std::vector<double>& bytes_per_rank);
 /// "" elsewhere.
 std::string gather_peak_memory(const Comm& comm);
 
-}  // namespace emc::app
+}  // namespace emc::os

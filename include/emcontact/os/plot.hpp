@@ -2,7 +2,7 @@
 // Output/plot: DIR/energies.png from DIR/monitors.csv with tools/plot_monitors.py.
 #include "emcontact/output/open_directory.hpp"
 
-namespace emc::app {
+namespace emc::os {
 
 /// Runs the plot script as a child process with an argument vector (no shell, whatever the
 /// directory's name holds) in the directory held by `dir` (fchdir: a rename of its name does
@@ -11,4 +11,4 @@ namespace emc::app {
 /// with its cause (the script's last line of stderr, or the system's error).
 void plot_monitors(const output::Directory& dir);
 
-}  // namespace emc::app
+}  // namespace emc::os

@@ -1,4 +1,4 @@
-// The per-rank peak resident memory of emcontact's summary (src/app/memory.cpp): each rank's
+// The per-rank peak resident memory of emcontact's summary (src/os/memory.cpp): each rank's
 // number is at least what that rank has touched, in rank order, and the line's two forms.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "emcontact/app/memory.hpp"
+#include "emcontact/os/memory.hpp"
 
 namespace {
 
@@ -40,8 +40,8 @@ TEST(PeakMemory, EachRankAtLeastWhatItTouched) {
   std::vector<char> touched(bytes, 1);  // every page written
   const long sum = std::accumulate(touched.begin(), touched.end(), 0L);
   ASSERT_EQ(sum, long(bytes));
-  EXPECT_GE(emc::app::peak_resident_bytes(), double(bytes));
-  const std::string line = emc::app::gather_peak_memory(*comm);
+  EXPECT_GE(emc::os::peak_resident_bytes(), double(bytes));
+  const std::string line = emc::os::gather_peak_memory(*comm);
   if (rank != 0) {
     EXPECT_TRUE(line.empty());
     return;
@@ -58,7 +58,7 @@ TEST(PeakMemory, EachRankAtLeastWhatItTouched) {
 }
 
 TEST(PeakMemory, LineListsUpToEightRanks) {
-  EXPECT_EQ(emc::app::peak_memory_line({466 * kMiB, 379 * kMiB, 379.4 * kMiB, 370 * kMiB}),
+  EXPECT_EQ(emc::os::peak_memory_line({466 * kMiB, 379 * kMiB, 379.4 * kMiB, 370 * kMiB}),
             "emcontact: peak resident memory per rank: 466 379 379 370 MiB (rank 0 first)");
 }
 
@@ -66,7 +66,7 @@ TEST(PeakMemory, LineSummarisesMoreRanks) {
   std::vector<double> b;
   for (int r = 0; r < 10; ++r) b.push_back((r == 0 ? 500 : 300 + r) * kMiB);
   // sorted: 301 ... 309, 500: median (305 + 306) / 2 = 305.5, printed rounded
-  EXPECT_EQ(emc::app::peak_memory_line(b),
+  EXPECT_EQ(emc::os::peak_memory_line(b),
             "emcontact: peak resident memory per rank: min 301, median 306, max 500, rank 0 500 "
             "MiB (10 ranks)");
 }

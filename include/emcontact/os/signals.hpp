@@ -4,7 +4,7 @@
 // loop to stop (time::stop_flag), which writes a checkpoint of the last accepted step and
 // exits 1 with the --restart command. SIGINT and SIGHUP that the process started with ignored
 // (a background job of a shell, nohup) stay ignored.
-namespace emc::app {
+namespace emc::os {
 
 /// Installs the handlers, first thing in main: a signal that comes before MPI has started is
 /// held (ending the process inside MPI's start-up leaves its helper processes complaining)
@@ -20,4 +20,4 @@ void signals_stop_time_loop();
 /// one has exited non-zero; rank 0's one line must stay the only one).
 void signals_ending(int code);
 
-}  // namespace emc::app
+}  // namespace emc::os

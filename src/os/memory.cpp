@@ -1,4 +1,4 @@
-#include "emcontact/app/memory.hpp"
+#include "emcontact/os/memory.hpp"
 
 #include <sys/resource.h>
 
@@ -19,7 +19,7 @@
 #include "emcontact/error.hpp"
 #include "emcontact/format.hpp"
 
-namespace emc::app {
+namespace emc::os {
 namespace {
 
 /// The model noted by note_model_size, for out_of_memory_message.
@@ -176,4 +176,4 @@ std::string gather_peak_memory(const Comm& comm) {
   return comm.getRank() == 0 ? peak_memory_line(all) : std::string();
 }
 
-}  // namespace emc::app
+}  // namespace emc::os

@@ -9,7 +9,7 @@
 
 #include "emcontact/mesh/body_mesh.hpp"
 
-namespace emc::app {
+namespace emc::os {
 
 /// Runs `build` in a child process and returns its meshes. An exception in the child is thrown
 /// again here as emc::InputError with its message (an out-of-memory one as
@@ -19,4 +19,4 @@ namespace emc::app {
 std::vector<mesh::BodyMesh> build_in_child_process(
     const std::function<std::vector<mesh::BodyMesh>()>& build);
 
-}  // namespace emc::app
+}  // namespace emc::os

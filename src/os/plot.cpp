@@ -1,5 +1,5 @@
 // Output/plot: tools/plot_monitors.py as a child process (posix_spawn, an argument vector).
-#include "emcontact/app/plot.hpp"
+#include "emcontact/os/plot.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -21,7 +21,7 @@
 
 extern char** environ;
 
-namespace emc::app {
+namespace emc::os {
 namespace {
 
 /// The child's descriptor of monitors.csv.
@@ -156,4 +156,4 @@ void plot_monitors(const output::Directory& dir) {
                  dir.path("monitors.csv").c_str(), python.c_str(), script.c_str(), why.c_str());
 }
 
-}  // namespace emc::app
+}  // namespace emc::os

@@ -1,4 +1,4 @@
-// The meshes built in a child process (src/app/mesh_process.cpp): what the child builds arrives
+// The meshes built in a child process (src/os/mesh_process.cpp): what the child builds arrives
 // whole, its memory is not the parent's, and its failures are reported as the parent's errors.
 #include <gtest/gtest.h>
 
@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "emcontact/app/memory.hpp"
-#include "emcontact/app/mesh_process.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/os/memory.hpp"
+#include "emcontact/os/mesh_process.hpp"
 
-namespace emc::app {
+namespace emc::os {
 namespace {
 
 mesh::BodyMesh two_tets(double shift) {
@@ -86,4 +86,4 @@ TEST(MeshProcess, AKilledChildIsNamedWithItsSignal) {
 }
 
 }  // namespace
-}  // namespace emc::app
+}  // namespace emc::os

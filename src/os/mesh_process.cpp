@@ -1,5 +1,5 @@
 // The meshes built in a child process (see mesh_process.hpp).
-#include "emcontact/app/mesh_process.hpp"
+#include "emcontact/os/mesh_process.hpp"
 
 #include <fcntl.h>
 #include <sys/prctl.h>
@@ -12,10 +12,10 @@
 #include <cstdio>
 #include <cstring>
 
-#include "emcontact/app/memory.hpp"
 #include "emcontact/error.hpp"
+#include "emcontact/os/memory.hpp"
 
-namespace emc::app {
+namespace emc::os {
 namespace {
 
 /// The child's end of the pipe: writes everything or remembers that it could not.
@@ -185,4 +185,4 @@ std::vector<mesh::BodyMesh> build_in_child_process(
   return meshes;
 }
 
-}  // namespace emc::app
+}  // namespace emc::os

@@ -1,4 +1,4 @@
-#include "emcontact/app/signals.hpp"
+#include "emcontact/os/signals.hpp"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 
 #include "emcontact/time/interrupt.hpp"
 
-namespace emc::app {
+namespace emc::os {
 namespace {
 
 enum Phase : int { kStarting, kSetup, kTimeLoop, kEnding };
@@ -82,4 +82,4 @@ void signals_ending(int code) {
   g_phase = kEnding;
 }
 
-}  // namespace emc::app
+}  // namespace emc::os
