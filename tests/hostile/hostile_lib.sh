@@ -1,6 +1,6 @@
 # Helpers for the hostile cases (sourced by run_hostile.sh).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-MPIRUN=(mpiexec --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1)
+MPIRUN=(mpiexec --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 --bind-to none)
 
 # safety SECONDS: a safety timeout of SECONDS on a quiet machine, scaled for a loaded one
 # (EMC_TIMEOUT_SCALE, default 4: oversubscribed MPI ranks beside other CPU-bound processes run

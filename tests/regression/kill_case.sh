@@ -10,7 +10,7 @@ sigs="TERM KILL"
 launch=()
 end=0.5  # the restart's Time/end: 100 steps of 0.005
 if [ $# -ge 6 ]; then
-  launch=("$5" --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 -np "$6")
+  launch=("$5" --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 --bind-to none -np "$6")
   sigs=TERM
   end=2  # mpiexec passes the signal on after a delay (up to step 100 seen)
 fi

@@ -3,7 +3,7 @@
 string(REPLACE "|" ";" SETS "${SETS}")
 file(REMOVE_RECURSE ${OUT})
 if(RANKS GREATER 1)
-  set(cmd ${MPIEXEC} --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 -np ${RANKS} ${EMC})
+  set(cmd ${MPIEXEC} --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 --bind-to none -np ${RANKS} ${EMC})
 else()
   set(cmd ${EMC})
 endif()

@@ -8,7 +8,7 @@
 # entries sliding at the checkpoint).
 function(emc_command ranks out)
   if(ranks GREATER 1)
-    set(${out} ${MPIEXEC} --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 -np ${ranks} ${EMC} PARENT_SCOPE)
+    set(${out} ${MPIEXEC} --allow-run-as-root --oversubscribe --mca mpi_yield_when_idle 1 --bind-to none -np ${ranks} ${EMC} PARENT_SCOPE)
   else()
     set(${out} ${EMC} PARENT_SCOPE)
   endif()
