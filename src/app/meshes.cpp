@@ -5,6 +5,7 @@
 #include "emcontact/error.hpp"
 #include "emcontact/format.hpp"
 #include "emcontact/input/echo.hpp"
+#include "emcontact/input/input.hpp"
 #include "emcontact/mesh/generate.hpp"
 #include "emcontact/os/memory.hpp"
 #include "emcontact/os/mesh_process.hpp"
@@ -94,9 +95,7 @@ std::vector<mesh::BodyMesh> build_on_root(const Teuchos::ParameterList& bodies,
   };
   double estimate = 0.0;
   std::string per_body;
-  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
-    const std::string name = bodies.name(it);
-    if (!bodies.isSublist(name)) continue;
+  for (const std::string& name : input::sublist_names(bodies)) {
     const double n = mesh::estimated_tets(bodies.sublist(name).sublist("Mesh"), where(name));
     estimate += n;
     if (n > 0) per_body += (per_body.empty() ? "" : ", ") + input::echo(name) + ": " + count(n);
@@ -106,9 +105,7 @@ std::vector<mesh::BodyMesh> build_on_root(const Teuchos::ParameterList& bodies,
   std::vector<mesh::BodyMesh> meshes;
   double tets = 0.0;
   per_body.clear();
-  for (auto it = bodies.begin(); it != bodies.end(); ++it) {
-    const std::string name = bodies.name(it);
-    if (!bodies.isSublist(name)) continue;
+  for (const std::string& name : input::sublist_names(bodies)) {
     meshes.push_back(
         mesh::build_mesh(bodies.sublist(name).sublist("Mesh"), input_dir, where(name)));
     mesh::check_tets(meshes.back(), where(name));

@@ -12,15 +12,14 @@ Progress::Progress(bool enabled, double end_time)
 void Progress::update(long step, double t, double dt, int newton, double energy_error, int active,
                       bool dissipates) {
   if (!enabled_) return;
-  const std::string text = format(
+  std::string text = format(
       "step %7ld  t = %-11.5g (%5.1f%%)  dt = %-9.3g  newton %2d  "
       "|%s-E0|/(K+W+|Pi|) = %-9.2e  contacts %d",
       step, t, 100.0 * t / end_, dt, newton, dissipates ? "E+D" : "E", energy_error, active);
   if (tty_) {
-    std::string line = text;
-    if (line.size() < width_) line.append(width_ - line.size(), ' ');
-    width_ = line.size();
-    std::fprintf(stderr, "\r%s", line.c_str());
+    if (text.size() < width_) text.append(width_ - text.size(), ' ');  // over the last line
+    width_ = text.size();
+    std::fprintf(stderr, "\r%s", text.c_str());
     std::fflush(stderr);
   } else if (t >= next_report_ - 1e-12 * end_) {
     std::fprintf(stderr, "%s\n", text.c_str());

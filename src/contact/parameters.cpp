@@ -4,6 +4,7 @@
 #include "emcontact/contact/pairs.hpp"
 #include "emcontact/error.hpp"
 #include "emcontact/format.hpp"
+#include "emcontact/input/input.hpp"
 #include "emcontact/input/validators.hpp"
 
 namespace emc::contact {
@@ -78,9 +79,7 @@ std::vector<PairSettings> read_pair_settings(const Teuchos::ParameterList& param
   std::vector<PairSettings> out;
   if (!params.isSublist("Contact")) return out;
   const auto& cl = params.sublist("Contact");
-  for (auto it = cl.begin(); it != cl.end(); ++it) {
-    const std::string name = cl.name(it);
-    if (!cl.isSublist(name)) continue;
+  for (const std::string& name : input::sublist_names(cl)) {
     const auto& c = cl.sublist(name);
     const std::string where = file + ": Contact/" + name;
     PairSettings p;

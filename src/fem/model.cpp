@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "emcontact/error.hpp"
+#include "emcontact/input/input.hpp"
 #include "emcontact/types.hpp"
 #include "kernels/tet4_loops.hpp"
 
@@ -77,9 +78,7 @@ Body make_body(const std::string& name, const Teuchos::ParameterList& bp, mesh::
 void apply_dirichlet(const Teuchos::ParameterList& params, Model& m, const std::string& file) {
   if (!params.isSublist("Dirichlet")) return;
   const auto& dl = params.sublist("Dirichlet");
-  for (auto it = dl.begin(); it != dl.end(); ++it) {
-    const std::string cname = dl.name(it);
-    if (!dl.isSublist(cname)) continue;
+  for (const std::string& cname : input::sublist_names(dl)) {
     const auto& c = dl.sublist(cname);
     const std::string where = file + ": Dirichlet/" + cname;
     const std::string body = c.get<std::string>("body");
@@ -104,9 +103,7 @@ Model build_model(const Teuchos::ParameterList& params, std::vector<mesh::BodyMe
   bool held = true;
   const auto& bl = params.sublist("Bodies");
   std::size_t k = 0;
-  for (auto it = bl.begin(); it != bl.end(); ++it) {
-    const std::string name = bl.name(it);
-    if (!bl.isSublist(name)) continue;
+  for (const std::string& name : input::sublist_names(bl)) {
     if (k >= meshes.size()) throw Error("internal: fewer meshes than bodies");
     Body b = make_body(name, bl.sublist(name), std::move(meshes[k++]), file + ": Bodies/" + name);
     b.node_begin = b.node_end = m.num_nodes();

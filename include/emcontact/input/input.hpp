@@ -9,6 +9,15 @@
 
 namespace emc::input {
 
+/// The names of the user-named sublists of `list` (a named section: `Bodies`, `Contact`,
+/// `Dirichlet`), in the input's order; its plain parameters are skipped.
+inline std::vector<std::string> sublist_names(const Teuchos::ParameterList& list) {
+  std::vector<std::string> names;
+  for (auto it = list.begin(); it != list.end(); ++it)
+    if (list.isSublist(list.name(it))) names.push_back(list.name(it));
+  return names;
+}
+
 /// A top-level section of the input. A fixed section (`Time`) is validated against `schema`;
 /// a named section (`Bodies`, `Dirichlet`, `Contact`) holds user-named sublists, each validated
 /// against the template `schema` and documented as `<name>/<placeholder>`.
