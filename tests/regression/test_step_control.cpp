@@ -49,7 +49,8 @@ TEST(StepControl, RunThatCannotContinueStopsWithMessageAndKeepsMonitors) {
     EXPECT_NE(msg.find("Newton did not converge"), std::string::npos);
     EXPECT_NE(msg.find("checkpoint.h5"), std::string::npos);  // the last step, to restart from
   }
-  EXPECT_TRUE(std::filesystem::exists("out_step_fail/checkpoint.h5"));
-  const auto rows = emc::output::read_monitors("out_step_fail/monitors.csv");
+  const std::string out = emc::testing::run_directory("out_step_fail");
+  EXPECT_TRUE(std::filesystem::exists(out + "/checkpoint.h5"));
+  const auto rows = emc::output::read_monitors(out + "/monitors.csv");
   EXPECT_GE(rows.size(), 1u);  // the initial state (and any accepted step) is on disk
 }
