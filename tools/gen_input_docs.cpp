@@ -22,7 +22,8 @@ line option `--set Section/Sub/name=value` changes a parameter (e.g. `--set Time
 Relative mesh file names are relative to the input file's directory. Examples in this
 directory: `tumbling_box.xml` (a free tumbling box) and `falling_box.xml` (the same box falling
 under gravity); with contact: `ball.xml`, `three_disks.xml` and `hollow_cylinders.xml`; with
-Coulomb friction: `ball_friction.xml` (the ball of `ball.xml` bouncing and rolling, mu = 0.3).
+Coulomb friction: `ball_friction.xml` (the ball of `ball.xml` bouncing and rolling, mu = 0.3);
+at large strain: `rubber_ball.xml` (the ball as a Neo-Hookean body thrown down at 20 m/s).
 
 ## Choosing slave and master
 
