@@ -1,10 +1,12 @@
 // Neo-Hookean and Mooney-Rivlin bodies (docs/THEORY.md §12) in whole runs, on 1 and 2 ranks:
 // E, L and J of a free tumbling body at large rotation, E through impacts with full stick and
-// frictionless contact (bodies of two models together, and with an SVK one), E + D with Coulomb
-// friction: each to the Newton tolerance (rtol 1e-12 in these cases) and round-off, asserted at
-// 1e-10 as the SVK cases are (test_conservation, test_contact_coulomb).
+// frictionless contact (bodies of two models together, and with an SVK one; a massless slave;
+// gap closure), E + D with Coulomb friction, settling: each to the Newton tolerance (rtol 1e-12 in
+// these cases) and round-off, asserted at 1e-10 as the SVK cases are (test_conservation,
+// test_contact_coulomb).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -119,6 +121,65 @@ TEST_P(Materials, CoulombSlideBalancesEnergyAndDissipation) {
   EXPECT_LT(e, 1e-10);
   EXPECT_TRUE(monotone);
   EXPECT_GT(rows.back().dissipated, 0.1 * rows[0].kinetic);
+}
+
+// The frictionless blocks, both of this model, with a massless slave (docs/THEORY.md §6.8) and
+// with gap closure (§7): E, L, J through the collision (the massless slave's moved mass keeps L
+// and J exact), and every active gap closed to round-off at every step of the closed run.
+TEST_P(Materials, MasslessSlaveAndGapClosureConserve) {
+  if (!one_rank()) GTEST_SKIP() << "asserted on 1 rank (2 ranks: the SVK cases of these options)";
+  auto both = model_of("A", GetParam(), 2e4, 0.3);
+  for (const auto& s : model_of("B", GetParam(), 2e4, 0.3)) both.push_back(s);
+  both.push_back("Contact/A on B/type=frictionless");
+  both.push_back("Time/end=0.3");  // the collision is over by t = 0.2
+  for (const std::string option : {"massless slave", "close gap"}) {
+    auto sets = both;
+    sets.push_back("Contact/A on B/" + option + "=true");
+    const auto rows = run_case("two_blocks.xml", sets,
+                               "out_two_blocks_" + GetParam() + "_" + option.substr(0, 5));
+    int contact_steps = 0;
+    double gap = 0;
+    for (const auto& r : rows)
+      if (r.active_contacts > 0) {
+        ++contact_steps;
+        gap = std::max(gap, r.gap_max);
+      }
+    const auto d = drifts(rows);
+    std::printf(
+        "%s blocks, %s: E %.3e L %.3e J %.3e, largest active gap %.2e, %d steps in "
+        "contact\n",
+        GetParam().c_str(), option.c_str(), d.E, d.L, d.J, gap, contact_steps);
+    EXPECT_GT(contact_steps, 5);
+    EXPECT_LT(d.E, 1e-10);
+    EXPECT_LT(d.L, 1e-10);
+    EXPECT_LT(d.J, 1e-10);
+    if (option == "close gap") EXPECT_LE(gap, 1e-9);
+  }
+}
+
+// Settling (docs/THEORY.md §6.7): a block set down on the ground under gravity reaches static
+// equilibrium, then stays there (no kinetic energy, every step at rest, no Newton iteration).
+TEST_P(Materials, SettledBlockStaysAtRest) {
+  if (!one_rank()) GTEST_SKIP() << "asserted on 1 rank";
+  auto sets = model_of("block", GetParam(), 5e5, 0.3);
+  for (const char* s :
+       {"Bodies/block/Mesh/lower corner={-0.1, -0.1, 0}",
+        "Bodies/block/Mesh/upper corner={0.1, 0.1, 0.2}", "Bodies/block/Initial/velocity={0, 0, 0}",
+        "Bodies/block/Initial/angular velocity={0, 0, 0}", "Time/settle steps=100",
+        "Time/end=0.05"})
+    sets.push_back(s);
+  const auto rows = run_case("drop.xml", sets, "out_settled_" + GetParam());
+  double kinetic = 0;
+  int contact_steps = 0;
+  for (const auto& r : rows) {
+    kinetic = std::max(kinetic, r.kinetic);
+    contact_steps += r.active_contacts > 0;
+  }
+  std::printf("%s settled block: elastic energy %.6e, largest kinetic %.3e\n", GetParam().c_str(),
+              rows.back().elastic, kinetic);
+  EXPECT_GT(rows.back().elastic, 0);  // it carries its weight
+  EXPECT_LE(kinetic, 1e-12 * rows.back().elastic);
+  EXPECT_EQ(contact_steps, static_cast<int>(rows.size()) - 1);
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, Materials, ::testing::Values("neo-hookean", "mooney-rivlin"),
