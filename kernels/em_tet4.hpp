@@ -98,72 +98,144 @@ KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const Lame&
     }
 }
 
+namespace em_detail {
+
+/// What the closed-form tangent of a hyperelastic element (docs/THEORY.md §12.4) needs of nodes
+/// 1-3 (A, B = 1 + n, 1 + m), the weights of the terms folded in: pa = V_e beta a, pd = V_e b d,
+/// pg = V_e g, qa = V_e (gamma + r)/2 a, qd = V_e a'/2 d; per pair sd = V_e/2 G_A . S_alg G_B,
+/// sX = V_e (gamma + r)/2 G_A . G_B, sC = V_e a'/2 G_A . C^-1 G_B.
+struct HyperTangentTerms {
+  double b[3][3], c[3][3], e[3][3], pa[3][3], pd[3][3], pg[3][3], qa[3][3], qd[3][3];
+  double sd[3][3], sX[3][3], sC[3][3], FF[3][3], FCF[3][3];
+};
+
+/// K of the terms: the blocks of nodes 1-3, then row and column 0 as their negated sums (K_AB
+/// is bilinear in (G_A, G_B) and G_0 = -(G_1 + G_2 + G_3), tet_gradients). kBeta: the beta term
+/// (Mooney-Rivlin; beta = 0 for Neo-Hookean).
+template <bool kBeta>
+KOKKOS_INLINE_FUNCTION void hyper_tangent_blocks(const HyperTangentTerms& t, double (*K)[12]) {
+  for (int n = 0; n < 3; ++n)
+    for (int m = 0; m < 3; ++m)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          K[3 + 3 * n + i][3 + 3 * m + j] =
+              (i == j ? t.sd[n][m] : 0.0) + (kBeta ? t.pa[n][i] * t.b[m][j] : 0.0) +
+              t.pd[n][i] * t.c[m][j] + t.pg[n][i] * t.e[m][j] + t.qa[m][i] * t.b[n][j] +
+              t.qd[m][i] * t.c[n][j] + t.sX[n][m] * t.FF[i][j] + t.sC[n][m] * t.FCF[i][j];
+  for (int p = 3; p < 12; ++p)
+    for (int j = 0; j < 3; ++j) K[p][j] = -(K[p][3 + j] + K[p][6 + j] + K[p][9 + j]);
+  for (int q = 0; q < 12; ++q)
+    for (int i = 0; i < 3; ++i) K[i][q] = -(K[3 + i][q] + K[6 + i][q] + K[9 + i][q]);
+}
+
+/// The closed-form tangent (em_tet4 below, docs/THEORY.md §12.4) given the discrete gradient
+/// (kEm) or the mid-point stress (dg.S, dg.Ci, dg.l; dE = Q = 0), F_{n+1/2} and F_x.
+template <bool kEm>
+KOKKOS_INLINE_FUNCTION void hyper_element_tangent(const double G[4][3], double Ve,
+                                                  const LogHyperelastic& m,
+                                                  const DiscreteGradient& dg, const double Fm[3][3],
+                                                  const double Fx[3][3], double (*K)[12]) {
+  const double(*Ci)[3] = dg.Ci;
+  em_detail::HyperTangentTerms t;
+  const double wX = 0.5 * Ve * (m.gamma + dg.r), wC = 0.5 * Ve * (m.alpha - 2 * m.b * dg.l);
+  const double wI = Ve * m.beta, wb = Ve * m.b;
+  // Rows n: G_n (Gt), C^-1 G_n, S_alg G_n, dE G_n, Q G_n, and their products with F_{n+1/2}^T,
+  // F_x^T (3 x 3 products on local copies).
+  using hyper_detail::mul;
+  double Gt[3][3], FmT[3][3], FxT[3][3], CG[3][3], SG[3][3], a[3][3], d[3][3], g[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Gt[i][j] = G[i + 1][j];
+      FmT[i][j] = Fm[j][i];
+      FxT[i][j] = Fx[j][i];
+    }
+  mul(Gt, dg.Ci, CG);  // C^-1, S_alg, dE, Q symmetric
+  mul(Gt, dg.S, SG);
+  mul(Gt, FmT, a);
+  mul(Gt, FxT, t.b);
+  mul(CG, FmT, d);
+  mul(CG, FxT, t.c);
+  if (kEm) {
+    double dEG[3][3], QG[3][3];
+    mul(Gt, dg.dE, dEG);
+    mul(Gt, dg.Q, QG);
+    mul(dEG, FmT, g);
+    mul(QG, FxT, t.e);
+  }
+  for (int n = 0; n < 3; ++n)
+    for (int i = 0; i < 3; ++i) {
+      t.pa[n][i] = wI * a[n][i];
+      t.pd[n][i] = wb * d[n][i];
+      t.pg[n][i] = kEm ? Ve * g[n][i] : 0.0;
+      if (!kEm) t.e[n][i] = 0;
+      t.qa[n][i] = wX * a[n][i];
+      t.qd[n][i] = wC * d[n][i];
+    }
+  for (int q = 0; q < 6; ++q) {  // symmetric in the pair (S_alg, C^-1 symmetric)
+    const int n = hyper_detail::up_i(q), p = hyper_detail::up_j(q);
+    double GSG = 0, GG = 0, GCG = 0;
+    for (int k = 0; k < 3; ++k) {
+      GSG += Gt[n][k] * SG[p][k];
+      GG += Gt[n][k] * Gt[p][k];
+      GCG += Gt[n][k] * CG[p][k];
+    }
+    t.sd[n][p] = t.sd[p][n] = 0.5 * Ve * GSG;
+    t.sX[n][p] = t.sX[p][n] = wX * GG;
+    t.sC[n][p] = t.sC[p][n] = wC * GCG;
+  }
+  double FmCi[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      FmCi[i][j] = Fm[i][0] * Ci[0][j] + Fm[i][1] * Ci[1][j] + Fm[i][2] * Ci[2][j];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      t.FF[i][j] = Fm[i][0] * Fx[j][0] + Fm[i][1] * Fx[j][1] + Fm[i][2] * Fx[j][2];
+      t.FCF[i][j] = FmCi[i][0] * Fx[j][0] + FmCi[i][1] * Fx[j][1] + FmCi[i][2] * Fx[j][2];
+    }
+  if (m.beta != 0)
+    em_detail::hyper_tangent_blocks<true>(t, K);
+  else
+    em_detail::hyper_tangent_blocks<false>(t, K);
+}
+
+}  // namespace em_detail
+
 /// The same for a Neo-Hookean or Mooney-Rivlin element (kernels/hyperelastic.hpp, docs/THEORY.md
 /// §12): S_alg is Gonzalez's discrete gradient between E_n and E_{n+1} (energy-momentum) or
-/// S(E(F_{n+1/2})) (mid-point), f_A = V_e F_{n+1/2} S_alg G_A, and
+/// S(E(F_{n+1/2})) (mid-point), f_A = V_e F_{n+1/2} S_alg G_A, and the tangent
 ///   K_AB,ij = V_e [1/2 (G_A . S_alg G_B) d_ij + (F_{n+1/2} D(X_Bj) G_A)_i],
 /// D(X) = dS_alg for the change X_Bj = sym(F_x^T (e_j (x) G_B)) of E_x (F_x = F_{n+1}: D of the
-/// discrete gradient; F_{n+1/2}: D = CC(E(F_{n+1/2})) / 2).
+/// discrete gradient; F_{n+1/2}: D = CC(E(F_{n+1/2})) / 2, r = Q = 0), in closed form
+/// (docs/THEORY.md §12.4): with C^-1 and l of E_m (of E(F_{n+1/2})), a' = alpha - 2 b l,
+/// a_A = F_{n+1/2} G_A, b_A = F_x G_A, d_A = F_{n+1/2} C^-1 G_A, c_A = F_x C^-1 G_A,
+/// g_A = F_{n+1/2} dE G_A, e_A = F_x Q G_A, FF = F_{n+1/2} F_x^T, FCF = F_{n+1/2} C^-1 F_x^T,
+///   K_AB,ij / V_e = 1/2 (G_A . S_alg G_B) d_ij + beta a_Ai b_Bj + b d_Ai c_Bj + g_Ai e_Bj
+///                   + (gamma + r)/2 [(G_A . G_B) FF_ij + a_Bi b_Aj]
+///                   + a'/2 [(G_A . C^-1 G_B) FCF_ij + d_Bi c_Aj].
 KOKKOS_INLINE_FUNCTION void em_tet4(const double G[4][3], double Ve, const LogHyperelastic& m,
                                     Integrator integ, const double u0[4][3], const double u1[4][3],
                                     double f[12], double (*K)[12]) {
-  double H0[3][3], H1[3][3], Hm[3][3], F1[3][3], Fm[3][3], S[3][3];
+  double H0[3][3], H1[3][3], Hm[3][3], F1[3][3], Fm[3][3];
   step_kinematics(G, u0, u1, H0, H1, Hm, F1, Fm);
   const bool em = integ == Integrator::energy_momentum;
-  DiscreteGradient dg;
-  double Ci[3][3], l = 0;
+  DiscreteGradient dg;  // the mid-point rule: S, C^-1 and l of E(F_{n+1/2}) in it, r = 0
   if (em) {
     double E0[3][3], E1[3][3];
     green_strain(H0, E0);
     green_strain(H1, E1);
     discrete_gradient(m, E0, E1, dg, K != nullptr);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) S[i][j] = dg.S[i][j];
   } else {
     double Ea[3][3];
     green_strain(Hm, Ea);
-    hyper_detail::inverse_C(Ea, Ci);
-    l = log_J(Ea);
-    hyper_stress(m, Ea, Ci, l, S);
+    dg.l = hyper_detail::inverse_C_log_J(Ea, dg.Ci);
+    hyper_stress(m, Ea, dg.Ci, dg.l, dg.S);
   }
-  internal_force(G, Ve, Fm, S, f);
+  internal_force(G, Ve, Fm, dg.S, f);
   if (K == nullptr) return;
-  const double(*Fx)[3] = em ? F1 : Fm;
-  double SG[4][3];
-  for (int A = 0; A < 4; ++A)
-    for (int i = 0; i < 3; ++i) {
-      double s = 0;
-      for (int k = 0; k < 3; ++k) s += S[i][k] * G[A][k];
-      SG[A][i] = s;
-    }
-  for (int B = 0; B < 4; ++B)
-    for (int j = 0; j < 3; ++j) {
-      double X[3][3], T[3][3], FT[3][3];
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q) X[p][q] = 0.5 * (Fx[j][p] * G[B][q] + Fx[j][q] * G[B][p]);
-      if (em) {
-        discrete_gradient_tangent(m, dg, X, T);
-      } else {
-        hyper_tangent(m, Ci, l, X, T);
-        for (int p = 0; p < 3; ++p)
-          for (int q = 0; q < 3; ++q) T[p][q] *= 0.5;
-      }
-      for (int i = 0; i < 3; ++i)
-        for (int q = 0; q < 3; ++q) {
-          double s = 0;
-          for (int k = 0; k < 3; ++k) s += Fm[i][k] * T[k][q];
-          FT[i][q] = s;
-        }
-      for (int A = 0; A < 4; ++A) {
-        double GSG = 0;
-        for (int k = 0; k < 3; ++k) GSG += G[A][k] * SG[B][k];
-        for (int i = 0; i < 3; ++i) {
-          double s = 0;
-          for (int q = 0; q < 3; ++q) s += FT[i][q] * G[A][q];
-          K[3 * A + i][3 * B + j] = Ve * s + (i == j ? 0.5 * Ve * GSG : 0.0);
-        }
-      }
-    }
+  if (em)
+    em_detail::hyper_element_tangent<true>(G, Ve, m, dg, Fm, F1, K);
+  else
+    em_detail::hyper_element_tangent<false>(G, Ve, m, dg, Fm, Fm, K);
 }
 
 /// Strain energy density W(E) of each material.

@@ -4,7 +4,10 @@
 //   BM_EmTet4                  energy-momentum force + exact 12x12 tangent + mass of one
 //                              element (newton_tet4, one core, the kernel alone; SVK)
 //   BM_EmTet4NeoHookean, BM_EmTet4MooneyRivlin   the same with the discrete gradient of
-//                              kernels/hyperelastic.hpp (docs/THEORY.md §12)
+//                              kernels/hyperelastic.hpp (docs/THEORY.md §12): u_n, u_{n+1}
+//                              random (+-0.1), the direct branch of delta (§12.3)
+//   BM_EmTet4NeoHookeanSmallStep   u_{n+1} within +-1e-4 of u_n (a dynamic step): its series
+//                              (the counter series_order: K of §12.3, 0 for the direct branch)
 //   BM_Tet4Force/<space>/n     the force-only loop over a box of 6 n^3 tets (em_tet4_forces;
 //                              the nodal forces zeroed, then summed: atomic adds when threaded)
 //   BM_Tet4Tangent/<space>/n   force + exact tangent added into the CRS matrix of the tets'
@@ -24,8 +27,28 @@
 namespace k = emc::kernels;
 namespace t = emc::kernels::test;
 
+/// The order of delta's series between u0 and u1 (docs/THEORY.md §12.3; 0: the direct branch;
+/// -1: SVK, which has none).
+static int series_order(const k::Lame&, const double[4][3], const double[2][4][3]) {
+  return -1;
+}
+static int series_order(const k::LogHyperelastic& m, const double G[4][3],
+                        const double u[2][4][3]) {
+  double H[2][3][3], E[2][3][3], M[3][3];
+  for (int n = 0; n < 2; ++n) {
+    k::displacement_gradient(G, u[n], H[n]);
+    k::green_strain(H[n], E[n]);
+  }
+  k::DiscreteGradient dg;
+  k::discrete_gradient(m, E[0], E[1], dg, false);
+  if (!dg.series) return 0;
+  k::hyper_detail::mul(dg.Ci, dg.dE, M);
+  return k::hyper_detail::series_order(k::hyper_detail::dot(M, M));
+}
+
+/// u_n, V_n random (+-0.1), u_{n+1} random (+-0.1) or, step > 0, u_n + (+-step).
 template <class Material>
-static void newton_element(benchmark::State& state, const Material& material) {
+static void newton_element(benchmark::State& state, const Material& material, double step = 0) {
   double X[4][3] = {{0, 0, 0}, {1, 0.1, 0}, {0.1, 1, 0.1}, {0, 0.2, 1}}, G[4][3];
   const double Ve = k::tet_gradients(X, G);
   std::mt19937 rng(1);
@@ -36,7 +59,13 @@ static void newton_element(benchmark::State& state, const Material& material) {
       s.u0[a][i] = d(rng);
       s.u1[a][i] = d(rng);
       s.V0[a][i] = d(rng);
+      if (step > 0) s.u1[a][i] = s.u0[a][i] + step / 0.1 * d(rng);
     }
+  double u[2][4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int i = 0; i < 3; ++i) u[0][a][i] = s.u0[a][i], u[1][a][i] = s.u1[a][i];
+  const int order = series_order(material, G, u);
+  if (order >= 0) state.counters["series_order"] = order;
   const double grav[3] = {0, 0, -9.81};
   double r[12], A[12][12], sc[12];
   for (auto _ : state) {
@@ -58,6 +87,11 @@ static void BM_EmTet4NeoHookean(benchmark::State& state) {
   newton_element(state, k::neo_hookean(l.lambda, l.mu));
 }
 BENCHMARK(BM_EmTet4NeoHookean);
+static void BM_EmTet4NeoHookeanSmallStep(benchmark::State& state) {
+  const k::Lame l = k::lame(1e6, 0.3);
+  newton_element(state, k::neo_hookean(l.lambda, l.mu), 1e-4);
+}
+BENCHMARK(BM_EmTet4NeoHookeanSmallStep);
 static void BM_EmTet4MooneyRivlin(benchmark::State& state) {
   const k::Lame l = k::lame(1e6, 0.3);
   newton_element(state, k::mooney_rivlin(0.5 * l.mu - 5e4, 5e4, l.lambda - 2e5));

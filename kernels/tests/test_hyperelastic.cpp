@@ -3,8 +3,11 @@
 // tangent the stress's (central differences); the small-strain limit is linear elasticity with
 // the stated lambda and mu; Gonzalez's discrete gradient does the work W_{n+1} - W_n to
 // round-off, its series agrees with the direct quotient where both apply and with a long double
-// reference; the element's tangent is the derivative of its force at large strain and next to
-// dE = 0; a tiny strain's force is the linear one; the forces have no resultant or moment.
+// reference, its order follows |M| and its gradients agree with the term-by-term products of
+// M^k; the element's closed-form tangent equals the strain-variation-by-variation one and is
+// the derivative of its force at large strain and next to dE = 0 (at every order of the series);
+// a body starting from rest does the work of its energy; a tiny strain's force is the linear
+// one; the forces have no resultant or moment.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -137,6 +140,23 @@ void long_double_deltas(const M3 E0, const M3 E1, long double d[2], double size[
   size[1] = static_cast<double>(l1 * l1 + l0 * l0 + 2 * std::fabs(lm * cd));
 }
 
+/// A random E_n (entries within +-0.2) and E_{n+1} = E_n + step D / 2 (D within +-1), with E_m,
+/// dE, C_m^-1 and M = C_m^-1 dE; false where |M| is beyond the series' bound.
+bool random_series_step(std::mt19937& rng, double step, M3 E0, M3 E1, M3 Em, M3 dE, M3 Ci, M3 M) {
+  M3 D;
+  random_sym(rng, 0.2, E0);
+  random_sym(rng, 1.0, D);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      E1[i][j] = E0[i][j] + 0.5 * step * D[i][j];
+      Em[i][j] = 0.5 * (E0[i][j] + E1[i][j]);
+      dE[i][j] = E1[i][j] - E0[i][j];
+    }
+  k::hyper_detail::inverse_C(Em, Ci);
+  k::hyper_detail::mul(Ci, dE, M);
+  return norm(M) <= k::kSeriesBound;
+}
+
 // The series of delta (|M| <= 1e-2) against the long double direct quotient: to the round-off of
 // its terms (4 eps of their sizes, |l0| + |l1| + |C_m^-1 : dE| and their squares: what the
 // energy identity needs), and to 1e-9 relative where delta stands above that (|M| = 1e-2,
@@ -148,20 +168,10 @@ TEST(Hyperelastic, SeriesOfDeltaIsAccurate) {
   int checked = 0;
   for (const double step : {1e-2, 1e-3, 1e-4, 1e-6}) {
     for (int trial = 0; trial < 10; ++trial) {
-      M3 E0, D, E1, Em, Ci, M, g1, g2, dE;
-      random_sym(rng, 0.2, E0);
-      random_sym(rng, 1.0, D);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          E1[i][j] = E0[i][j] + 0.5 * step * D[i][j];
-          Em[i][j] = 0.5 * (E0[i][j] + E1[i][j]);
-          dE[i][j] = E1[i][j] - E0[i][j];
-        }
-      k::hyper_detail::inverse_C(Em, Ci);
-      k::hyper_detail::mul(Ci, dE, M);
-      if (norm(M) > k::kSeriesBound) continue;
+      M3 E0, E1, Em, Ci, M, g1, g2, dE;
+      if (!random_series_step(rng, step, E0, E1, Em, dE, Ci, M)) continue;
       double d[2], dd[2], size[2];
-      k::hyper_detail::log_deltas_series(Ci, k::log_J(Em), M, d, g1, g2);
+      k::hyper_detail::log_deltas_series(Ci, k::log_J(Em), M, dE, d, g1, g2);
       long double ref[2];
       long_double_deltas(E0, E1, ref, size);
       for (int c = 0; c < 2; ++c) {
@@ -172,13 +182,118 @@ TEST(Hyperelastic, SeriesOfDeltaIsAccurate) {
         }
       }
       if (step == 1e-2) {
-        k::hyper_detail::log_deltas_direct(E0, E1, Ci, k::log_J(Em), dE, dd, g1, g2);
+        k::hyper_detail::log_deltas_direct(E0, E1, Ci, k::log_J(Em), dE, M, dd, g1, g2);
         for (int c = 0; c < 2; ++c) EXPECT_NEAR(dd[c], d[c], 4 * eps * size[c]);
       }
       ++checked;
     }
   }
   EXPECT_GT(checked, 30);
+}
+
+/// The reference series of delta_1, delta_2 and their gradients: every term to M^9, three
+/// products a term, dc_k / dE1 = s_k sym((I - M) M^(k-1) C_m^-1) (docs/THEORY.md §12.3-§12.4).
+void reference_series(const M3 Ci, double lm, const M3 M, double d[2], M3 g1, M3 g2) {
+  using namespace k::hyper_detail;
+  constexpr int K = 9;
+  double c[K + 1];
+  M3 gc[K + 1];
+  M3 P, IM;  // P = M^(k-1); IM = I - M
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      P[i][j] = i == j ? 1.0 : 0.0;
+      IM[i][j] = (i == j ? 1.0 : 0.0) - M[i][j];
+      gc[0][i][j] = 0.5 * Ci[i][j];
+    }
+  c[0] = lm;
+  for (int k = 1; k <= K; ++k) {
+    M3 A, B, Pk;
+    mul(P, M, Pk);  // M^k
+    const double sign = (k % 2) ? 0.5 : -0.5;
+    c[k] = sign * trace(Pk) / k;
+    mul(IM, P, A);
+    mul(A, Ci, B);
+    sym(B, gc[k]);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        gc[k][i][j] *= sign;
+        P[i][j] = Pk[i][j];
+      }
+  }
+  d[0] = d[1] = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) g1[i][j] = g2[i][j] = 0;
+  for (int k = 3; k <= K; k += 2) {
+    d[0] += 2 * c[k];
+    for (int n = 0; n <= k; ++n) d[1] += 2 * c[n] * c[k - n];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        g1[i][j] += 2 * gc[k][i][j];
+        double s = 0;
+        for (int n = 0; n <= k; ++n) s += c[k - n] * gc[n][i][j];
+        g2[i][j] += 4 * s;
+      }
+  }
+}
+
+// The series' order: the first odd K with |M|^K <= 1e-17, 9 at the bound 1e-2.
+TEST(Hyperelastic, SeriesOrderFollowsTheSizeOfM) {
+  using k::hyper_detail::series_order;
+  const double tail = k::kSeriesTail;
+  for (int K = 3; K <= 9; K += 2) {
+    const double m = std::pow(tail, 1.0 / K);  // |M|^K = tail: still order K
+    EXPECT_EQ(series_order(0.99 * m * m), K) << "K " << K;
+    if (K < 9) {
+      EXPECT_EQ(series_order(1.01 * m * m), K + 2) << "K " << K;
+    }
+  }
+  EXPECT_EQ(series_order(0.0), 3);
+  EXPECT_EQ(series_order(k::kSeriesBound * k::kSeriesBound), 9);
+  EXPECT_LE(std::pow(k::kSeriesBound, k::kSeriesMaxOrder), tail);
+}
+
+// The series (two products and Cayley-Hamilton, to its order) against the reference (every term
+// to M^9, three products a term): delta_1, delta_2 to 4 eps of their terms' sizes (as
+// SeriesOfDeltaIsAccurate), and their gradients g, O(|M|^2), to 1e-15 of |C_m^-1| |M| (1 + |l_m|):
+// g / (dE : dE) enters the tangent times dE (the dE (x) Q term), so that this bounds the
+// tangent's change by 1e-15 relative; the truncation leaves |M|^(K+1) <= 1e-17 |M| (§12.3).
+// Symmetric to the bit; the values alone (no gradients) are the same bits. |M| from 1e-2 to
+// 1e-9: every order.
+TEST(Hyperelastic, SeriesGradientsMatchTheReference) {
+  std::mt19937 rng(7);
+  const double eps = std::numeric_limits<double>::epsilon();
+  int orders[10] = {};
+  for (const double step : {1e-2, 3e-3, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-9}) {
+    for (int trial = 0; trial < 10; ++trial) {
+      M3 E0, E1, Em, Ci, M, dE, g1, g2, r1, r2;
+      if (!random_series_step(rng, step, E0, E1, Em, dE, Ci, M)) continue;
+      const double lm = k::log_J(Em);
+      double d[2], dr[2], size[2];
+      long double ld[2];
+      long_double_deltas(E0, E1, ld, size);
+      k::hyper_detail::log_deltas_series(Ci, lm, M, dE, d, g1, g2);
+      reference_series(Ci, lm, M, dr, r1, r2);
+      ++orders[k::hyper_detail::series_order(dot(M, M))];
+      for (int c = 0; c < 2; ++c)
+        EXPECT_NEAR(d[c], dr[c], 4 * eps * size[c]) << "|M| " << norm(M) << " term " << c;
+      const double scale = 1e-15 * norm(Ci) * norm(M) * (1 + std::fabs(lm));
+      M3 e1, e2;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          e1[i][j] = g1[i][j] - r1[i][j];
+          e2[i][j] = g2[i][j] - r2[i][j];
+          EXPECT_EQ(g1[i][j], g1[j][i]);
+          EXPECT_EQ(g2[i][j], g2[j][i]);
+        }
+      EXPECT_LT(norm(e1), scale) << "|M| " << norm(M);
+      EXPECT_LT(norm(e2), scale) << "|M| " << norm(M);
+      double dv[2];
+      k::hyper_detail::log_deltas_series(Ci, lm, M, dE, dv, nullptr, nullptr);
+      EXPECT_EQ(dv[0], d[0]);
+      EXPECT_EQ(dv[1], d[1]);
+    }
+  }
+  for (int K = 3; K <= 9; K += 2) EXPECT_GT(orders[K], 0) << "order " << K;
 }
 
 using emc::kernels::test::Element;
@@ -284,6 +399,156 @@ TEST_P(Materials, ElementTangentMatchesFiniteDifferences) {
       }
     }
   }
+}
+
+/// The reference element tangent: D applied to each of the 12 strain variations
+/// X_Bj = sym(F_x^T (e_j (x) G_B)) (discrete_gradient_tangent; the mid-point rule CC / 2), then
+/// K_AB,ij = V_e [1/2 (G_A . S_alg G_B) d_ij + (F_{n+1/2} D(X_Bj) G_A)_i] (docs/THEORY.md §12.4).
+void reference_tangent(const Element& e, const k::LogHyperelastic& m, k::Integrator integ,
+                       const double u0[4][3], const double u1[4][3], double K[12][12]) {
+  double H0[3][3], H1[3][3], Hm[3][3], F1[3][3], Fm[3][3], S[3][3], Ci[3][3], l = 0;
+  k::step_kinematics(e.G, u0, u1, H0, H1, Hm, F1, Fm);
+  const bool em = integ == k::Integrator::energy_momentum;
+  k::DiscreteGradient dg{};
+  if (em) {
+    double E0[3][3], E1[3][3];
+    k::green_strain(H0, E0);
+    k::green_strain(H1, E1);
+    k::discrete_gradient(m, E0, E1, dg);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) S[i][j] = dg.S[i][j];
+  } else {
+    double Ea[3][3];
+    k::green_strain(Hm, Ea);
+    k::hyper_detail::inverse_C(Ea, Ci);
+    l = k::log_J(Ea);
+    k::hyper_stress(m, Ea, Ci, l, S);
+  }
+  const double(*Fx)[3] = em ? F1 : Fm;
+  for (int B = 0; B < 4; ++B)
+    for (int j = 0; j < 3; ++j) {
+      double X[3][3], T[3][3];
+      for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q) X[p][q] = 0.5 * (Fx[j][p] * e.G[B][q] + Fx[j][q] * e.G[B][p]);
+      if (em) {
+        k::discrete_gradient_tangent(m, dg, X, T);
+      } else {
+        k::hyper_tangent(m, Ci, l, X, T);
+        for (int p = 0; p < 3; ++p)
+          for (int q = 0; q < 3; ++q) T[p][q] *= 0.5;
+      }
+      for (int A = 0; A < 4; ++A)
+        for (int i = 0; i < 3; ++i) {
+          double s = 0, GSG = 0;
+          for (int p = 0; p < 3; ++p)
+            for (int q = 0; q < 3; ++q) {
+              s += Fm[i][p] * T[p][q] * e.G[A][q];
+              GSG += e.G[A][p] * S[p][q] * e.G[B][q];
+            }
+          K[3 * A + i][3 * B + j] = e.Ve * s + (i == j ? 0.5 * e.Ve * GSG : 0.0);
+        }
+    }
+}
+
+// The closed-form tangent of em_tet4 equals the reference strain variation by variation to
+// 1e-14 of |K|, energy-momentum and mid-point, at large strain (the direct branch), with u1
+// within 1e-3 to 1e-9 of u0 (the series, every order) and at u1 = u0 (dE = 0).
+TEST_P(Materials, ClosedFormTangentEqualsThePerVariationOne) {
+  const auto m = GetParam();
+  const Element e = make_element();
+  std::mt19937 rng(8);
+  double worst = 0;
+  for (int trial = 0; trial < 10; ++trial) {
+    double u0[4][3], u1[4][3], du[4][3];
+    random_u(rng, 0.3, u0);
+    random_u(rng, 0.3, u1);
+    random_u(rng, 1.0, du);
+    for (const double size : {-1.0, 1e-3, 1e-5, 1e-7, 1e-9, 0.0}) {
+      if (size >= 0)
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < 3; ++i) u1[a][i] = u0[a][i] + size * du[a][i];
+      for (auto integ : {k::Integrator::energy_momentum, k::Integrator::midpoint}) {
+        double f[12], K[12][12], R[12][12], err = 0, big = 0;
+        k::em_tet4(e.G, e.Ve, m, integ, u0, u1, f, K);
+        reference_tangent(e, m, integ, u0, u1, R);
+        for (int r = 0; r < 12; ++r)
+          for (int c = 0; c < 12; ++c) {
+            err += (K[r][c] - R[r][c]) * (K[r][c] - R[r][c]);
+            big += R[r][c] * R[r][c];
+          }
+        worst = std::max(worst, std::sqrt(err / big));
+        EXPECT_LT(std::sqrt(err / big), 1e-14) << "trial " << trial << " |du| " << size;
+      }
+    }
+  }
+  std::printf("worst |K - K_ref| / |K_ref| = %.2e\n", worst);
+}
+
+// Near dE = 0 on the series path at each of its orders (|u1 - u0| from 1e-3 down to 1e-7:
+// |M| from about 1e-3, order 7, to 1e-7, order 3), the tangent against central differences with
+// a step of 1e-2 of |u1 - u0| (the series throughout; round-off eps |f| / step: 1e-7 of |K| at
+// the smallest step).
+TEST_P(Materials, ElementTangentOnTheSeriesMatchesFiniteDifferences) {
+  const auto m = GetParam();
+  const Element e = make_element();
+  std::mt19937 rng(9);
+  int orders[10] = {};
+  for (int trial = 0; trial < 5; ++trial) {
+    double u0[4][3], u1[4][3], du[4][3];
+    random_u(rng, 0.3, u0);
+    random_u(rng, 1.0, du);
+    for (const double size : {1e-3, 3e-4, 1e-4, 1e-5, 1e-6, 1e-7}) {
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i) u1[a][i] = u0[a][i] + size * du[a][i];
+      double H0[3][3], H1[3][3], E0[3][3], E1[3][3], Em[3][3], dE[3][3], Ci[3][3], M[3][3];
+      k::displacement_gradient(e.G, u0, H0);
+      k::displacement_gradient(e.G, u1, H1);
+      k::green_strain(H0, E0);
+      k::green_strain(H1, E1);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          Em[i][j] = 0.5 * (E0[i][j] + E1[i][j]);
+          dE[i][j] = E1[i][j] - E0[i][j];
+        }
+      k::hyper_detail::inverse_C(Em, Ci);
+      k::hyper_detail::mul(Ci, dE, M);
+      ASSERT_LE(norm(M), k::kSeriesBound);
+      ++orders[k::hyper_detail::series_order(dot(M, M))];
+      EXPECT_LT(tangent_error(e, m, k::Integrator::energy_momentum, u0, u1, 1e-2 * size), 1e-6)
+          << "trial " << trial << " |du| " << size;
+    }
+  }
+  for (int K = 3; K <= 7; K += 2) EXPECT_GT(orders[K], 0) << "order " << K;
+}
+
+// A body starting from rest (u0 = 0, E_n = 0): W_{n+1} - W_n = W_{n+1} is O(|dE|^2), the
+// smallest scale against which the series' remainder must stand below round-off (§12.3):
+// f . u1 = V_e W(u1) to 1e-14 of it on the series (every order: |u1| from 1e-2 to 1e-8), to
+// 1e-13 on the direct branch (its differences' round-off eps |l| against W = O(|M|^2): eps / |M|,
+// 2e-14 just above the switch).
+TEST_P(Materials, WorkFromRestIsTheEnergy) {
+  const auto m = GetParam();
+  const Element e = make_element();
+  std::mt19937 rng(10);
+  double worst = 0, worst_series = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    double zero[4][3] = {}, du[4][3], u1[4][3], work, dW, scale;
+    random_u(rng, 1.0, du);
+    for (double size = 1e-1; size >= 1e-8; size /= 10) {
+      for (int a = 0; a < 4; ++a)
+        for (int i = 0; i < 3; ++i) u1[a][i] = size * du[a][i];
+      work_and_energy(e, m, zero, u1, work, dW, scale);
+      double H1[3][3], E1[3][3], Z[3][3] = {};
+      k::displacement_gradient(e.G, u1, H1);
+      k::green_strain(H1, E1);
+      k::DiscreteGradient dg;
+      k::discrete_gradient(m, Z, E1, dg, false);
+      const double err = std::fabs(work - dW) / scale;
+      (dg.series ? worst_series : worst) = std::max(dg.series ? worst_series : worst, err);
+      EXPECT_LT(err, dg.series ? 1e-14 : 1e-13) << "trial " << trial << " |u1| " << size;
+    }
+  }
+  std::printf("worst |f . u1 - W1| / W1 = %.2e series, %.2e direct\n", worst_series, worst);
 }
 
 // A body near rest: the force of |H| ~ 1e-12 is the linear one 2 K(0) u to 1e-10 (no noise of
